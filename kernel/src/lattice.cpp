@@ -132,6 +132,13 @@ void Lattice::validate() const {
     if (b.has_radii()) {
       require_positive(*b.from_radius, f + ".radii[0]");
       require_positive(*b.to_radius, f + ".radii[1]");
+      // A beam end thicker than its node would stick out of it: the hull would not be ball plus stumps.
+      if (*b.from_radius > d.nodes[b.from].radius)
+        fail_input(f + ".radii[0]", "must not exceed the radius of node " + std::to_string(b.from) + " (" +
+                                        std::to_string(d.nodes[b.from].radius) + ")");
+      if (*b.to_radius > d.nodes[b.to].radius)
+        fail_input(f + ".radii[1]", "must not exceed the radius of node " + std::to_string(b.to) + " (" +
+                                        std::to_string(d.nodes[b.to].radius) + ")");
     }
     for (std::size_t q = 0; q < p; ++q) {
       const BeamPattern& o = d.beams[q];

@@ -1,0 +1,34 @@
+#pragma once
+// Conversions between Python values and kernel types. Every failure is a ValueError naming the parameter.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <string>
+
+#include "steady/frame.hpp"
+#include "steady/lattice.hpp"
+#include "steady/vec.hpp"
+
+namespace steadypy {
+
+namespace py = pybind11;
+
+[[noreturn]] void value_error(const std::string& name, const std::string& what);
+
+double to_double(py::handle value, const std::string& name);
+std::int64_t to_int(py::handle value, const std::string& name);
+steady::Vec3 to_vec3(py::handle value, const std::string& name);
+steady::Vec2 to_vec2(py::handle value, const std::string& name);
+// A frame (origin, x, y, z).
+steady::Frame to_frame(py::handle value, const std::string& name);
+// Points as an N x 3 float64 array (a single point (3,) is accepted as 1 x 3); `single` tells which.
+py::array_t<double> to_points(py::handle value, const std::string& name, int dims, bool* single);
+
+py::array_t<double> vec3_array(const steady::Vec3& v);
+
+std::vector<steady::TemplateNode> to_nodes(py::handle value);
+std::vector<steady::BeamPattern> to_beams(py::handle value);
+steady::Counts to_counts(py::handle value);
+std::vector<steady::NodeId> to_omitted(py::handle value);
+
+}  // namespace steadypy

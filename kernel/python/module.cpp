@@ -1,0 +1,27 @@
+// The Python module `steadylattice`: the steady kernel for scripts, tests and the FreeCAD workbench.
+#include <pybind11/pybind11.h>
+
+#include "steady/errors.hpp"
+#include "steady/lattice_io.hpp"
+
+namespace steadypy {
+namespace py = pybind11;
+void bind_similarity(py::module_& m);
+void bind_lattice(py::module_& m);
+}  // namespace steadypy
+
+PYBIND11_MODULE(steadylattice, m) {
+  namespace py = pybind11;
+  m.doc() = "Steady lattices: similarities, steady brick lattices, their file format (the LatticeWorkbench kernel).";
+  // InvalidInput derives from std::invalid_argument, which pybind11 already raises as ValueError.
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const steady::ResourceLimit& e) {
+      PyErr_SetString(PyExc_MemoryError, e.what());
+    }
+  });
+  m.attr("FORMAT_VERSION") = steady::kLatticeFormatVersion;
+  steadypy::bind_similarity(m);
+  steadypy::bind_lattice(m);
+}
