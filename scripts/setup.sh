@@ -16,7 +16,7 @@ PACKAGES=(
   # bindings and Python side
   python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest
   # maths, parallelism, formats
-  libglm-dev libtbb-dev lib3mf-dev nlohmann-json3-dev
+  libglm-dev libtbb-dev lib3mf-dev libzip-dev zlib1g-dev nlohmann-json3-dev
   # tests and benchmarks
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   # a real FreeCAD window without a display; peak-memory measurement
