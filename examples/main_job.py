@@ -1,14 +1,14 @@
-"""Builds an octet steady lattice with a taper and a twist and writes it as STEP.
+"""The main job of the README's first command: build a steady lattice and export it as STEP.
 
-Run: freecad -c examples/lattice_to_step.py      (output: $LATTICE_OUT or ./out/octet_lattice.step)
+Builds an octet lattice with a taper and a twist, writes STEP, the lattice file (JSON) and the FreeCAD document.
+Run: freecad -c examples/main_job.py      (output: $LATTICE_OUT or ./out/)
 """
-import math
 import os
-import sys
 
 import FreeCAD
 
 from latticewb import api
+from latticewb.macro import run_macro
 
 
 def main():
@@ -31,11 +31,6 @@ def main():
     return path
 
 
-if __name__ in ("__main__", "lattice_to_step"):
-    try:
-        main()
-    except Exception as error:  # freecad -c exits 0 on an uncaught exception: make failure visible
-        FreeCAD.Console.PrintError("lattice_to_step failed: %s\n" % error)
-        sys.exit(1)
-    if not FreeCAD.GuiUp:
-        sys.exit(0)
+# freecad -c names the script's module after its file
+if __name__ in ("__main__", "main_job"):
+    run_macro(main, "main_job")
