@@ -15,11 +15,9 @@ def main():
     out_dir = os.environ.get("LATTICE_OUT", os.path.join(os.getcwd(), "out"))
     os.makedirs(out_dir, exist_ok=True)
     doc = FreeCAD.newDocument("LatticeExample")
-    # 4 x 3 x 3 octet cells of 10 mm; each cell along W is 3 % smaller and turned 4 degrees about the W axis
-    twist = FreeCAD.Rotation(FreeCAD.Vector(0, 0, 1), 4.0)
+    # 4 x 3 x 3 octet cells of 10 mm; each layer along W is 3 % smaller and turned 4 degrees about the centre line
     lattice = api.make_lattice(doc, preset="octet", cells=(4, 3, 3), cell_size=10.0, node_radius=1.4,
-                               beam_radius=0.9, step_w=FreeCAD.Placement(FreeCAD.Vector(0, 0, 1), twist),
-                               scale_w=0.97)
+                               beam_radius=0.9, taper_w=-3.0, twist_w=4.0)
     doc.recompute()
     if not lattice.isValid():
         raise RuntimeError("the lattice did not build")

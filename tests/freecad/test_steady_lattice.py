@@ -11,39 +11,35 @@ import steadylattice as sl
 from latticewb import api, presets
 
 
-def expected_ball_count(preset, cells):
-    """Count by brute force: the basis points of every cell corner group inside the box of cells."""
-    basis, _ = presets.preset_template(preset)
-    count = 0
+def lattice_points(preset, cells):
+    """Brute force: every basis point of every cell corner group that lies inside the box of cells, as
+    (position in cell fractions, basis index)."""
+    basis = presets.PRESETS[preset][0]
+    points = []
     for i in range(cells[0] + 1):
         for j in range(cells[1] + 1):
             for k in range(cells[2] + 1):
-                for b in basis:
-                    if all(idx + f <= c for idx, f, c in zip((i, j, k), b, cells)):
-                        count += 1
-    return count
+                for n, b in enumerate(basis):
+                    p = (i + b[0], j + b[1], k + b[2])
+                    if all(x <= c + 1e-12 for x, c in zip(p, cells)):
+                        points.append((p, n))
+    return points
+
+
+def expected_ball_count(preset, cells):
+    return len(lattice_points(preset, cells))
 
 
 def expected_beam_count(preset, cells):
-    """Beams by brute force: all pairs of lattice points inside the box at the preset's neighbour distance."""
-    basis, patterns = presets.preset_template(preset)
-    points = set()
-    for i in range(cells[0] + 1):
-        for j in range(cells[1] + 1):
-            for k in range(cells[2] + 1):
-                for b in basis:
-                    p = (i + b[0], j + b[1], k + b[2])
-                    if all(x <= c for x, c in zip(p, cells)):
-                        points.add(p)
+    """Brute force over all pairs of points: those at the preset's neighbour distance (for FCC only pairs with a
+    cell corner at one end). Independent of the beam patterns the preset generates."""
+    _, aspect, distance, which = presets.PRESETS[preset]
+    points = lattice_points(preset, cells)
     count = 0
-    for p in points:
-        for n1, di, dj, dk, n2 in patterns:
-            # p plays node n1 when its fractional part is basis[n1]
-            frac = tuple(x - math.floor(x) for x in p)
-            if frac != tuple(basis[n1]):
-                continue
-            q = tuple(math.floor(x) + d + f for x, d, f in zip(p, (di, dj, dk), basis[n2]))
-            if q in points:
+    for q, (p1, n1) in enumerate(points):
+        for p2, n2 in points[q + 1:]:
+            d = math.sqrt(sum(((x - y) * a) ** 2 for x, y, a in zip(p1, p2, aspect)))
+            if abs(d - distance) < 1e-9 and (which == "all" or 0 in (n1, n2)):
                 count += 1
     return count
 
@@ -68,11 +64,12 @@ class SteadyLatticeTest(unittest.TestCase):
             # the lattice spans the box of cells
             box = obj.Shape.BoundBox
             self.assertAlmostEqual(box.XMin, -0.8, places=6)
-            self.assertAlmostEqual(box.XMax, 15.8, places=6)
+            aspect = presets.PRESETS[preset][1]
+            self.assertAlmostEqual(box.XMax, 15.0 * aspect[0] + 0.8, places=6)
 
     def test_editing_recomputes(self):
         obj = api.make_lattice(self.doc, preset="cubic", cells=(2, 2, 2), cell_size=10.0, node_radius=1.0,
-                               beam_radius=0.5)
+                               beam_radius=0.5, layout="steps")
         self.doc.recompute()
         self.assertEqual(obj.BallCount, 27)
         obj.CellsU = 4
@@ -113,23 +110,41 @@ class SteadyLatticeTest(unittest.TestCase):
         _, _, ra, rb = api.lattice(obj).beams()
         self.assertEqual(sorted(set(ra.tolist())), [0.4, 1.0])
 
-    def test_bad_input_leaves_the_document_intact(self):
+    def test_nonsense_is_refused_or_clamped_with_a_message(self):
+        obj = api.make_lattice(self.doc, preset="cubic", cells=(2, 2, 2), node_radius=1.0, beam_radius=0.5)
+        self.doc.recompute()
+        obj.BeamRadius = 5.0  # wider than the nodes: clamped
+        self.assertAlmostEqual(obj.BeamRadius.Value, 1.0)
+        obj.TaperU = -150.0  # would shrink cells to nothing: clamped
+        self.assertAlmostEqual(obj.TaperU, -99.0)
+        obj.TaperU = 0.0
+        obj.CellSize = 0.0  # refused: the previous value comes back
+        self.assertAlmostEqual(obj.CellSize.Value, 10.0)
+        obj.Preset = "custom"
+        before = list(obj.Beams)
+        obj.Beams = ["0 1 0 0 7"]  # node 7 does not exist: refused
+        self.assertEqual(list(obj.Beams), before)
+        obj.Beams = ["0 1 0 0"]  # malformed: refused
+        self.assertEqual(list(obj.Beams), before)
+        obj.NodeRadii = [-1.0] * len(obj.Nodes)
+        self.assertTrue(all(r > 0 for r in obj.NodeRadii))
+        self.doc.recompute()
+        self.assertTrue(obj.isValid())
+
+    def test_kernel_errors_leave_the_document_intact(self):
         good = api.make_lattice(self.doc, preset="cubic", cells=(2, 2, 2))
-        bad = api.make_lattice(self.doc, preset="cubic", cells=(2, 2, 2))
+        bad = api.make_lattice(self.doc, preset="custom", cells=(3, 1, 1), nodes=[FreeCAD.Vector(0, 0, 0)],
+                               node_radii=[1.0], beams=["0 1 0 0 0"])
         self.doc.recompute()
         volume = good.Shape.Volume
-        bad.BeamRadius = 5.0  # thicker than the nodes
+        bad.Beams = ["0 1 0 0 0", "0 -1 0 0 0"]  # the same beams twice: only the kernel sees it
         self.doc.recompute()
         self.assertIn("Invalid", bad.State)
         self.assertTrue(good.isValid())
         self.assertAlmostEqual(good.Shape.Volume, volume)
-        bad.BeamRadius = 0.5
+        bad.Beams = ["0 1 0 0 0"]
         self.doc.recompute()
         self.assertTrue(bad.isValid())
-        bad.Preset = "custom"
-        bad.Beams = ["0 1 0 0 7"]
-        self.doc.recompute()
-        self.assertIn("Invalid", bad.State)
         with self.assertRaises(ValueError):
             api.make_lattice(self.doc, preset="gyroid")
         with self.assertRaises(ValueError):
@@ -138,7 +153,7 @@ class SteadyLatticeTest(unittest.TestCase):
 
     def test_save_and_reload(self):
         obj = api.make_lattice(self.doc, preset="BCC", cells=(2, 3, 2), cell_size=7.0, node_radius=1.1,
-                               beam_radius=0.6, scale_v=1.05)
+                               beam_radius=0.6, layout="steps", scale_v=1.05)
         obj.Placement = FreeCAD.Placement(FreeCAD.Vector(5, 6, 7), FreeCAD.Rotation(FreeCAD.Vector(1, 0, 0), 30))
         self.doc.recompute()
         volume, count, name = obj.Shape.Volume, obj.BallCount, obj.Name

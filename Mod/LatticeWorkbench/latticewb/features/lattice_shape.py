@@ -1,11 +1,14 @@
-"""The shape a SteadyLattice shows: its balls and beams as solids (a compound, not fused), or, past a budget,
-a light preview of beam axes. Exact trimmed B-rep parts are the job of LatticePart."""
+"""The shape of a SteadyLattice shown as Solids: its balls and beams as separate solids (a compound, not fused).
+Exact trimmed B-rep parts are the job of LatticePart; large lattices are shown by the preview."""
 import FreeCAD
 import Part
 
-# Building one OpenCASCADE primitive per element from Python costs ~0.2 ms; past this many elements the
-# feature shows beam axes instead, so that a parameter change stays interactive.
+# Building one OpenCASCADE primitive per element from Python costs ~0.2 ms: up to this many elements the
+# Auto representation shows solids and a parameter change stays interactive.
 MAX_SOLID_ELEMENTS = 5000
+# Past this many elements a compound of separate solids takes minutes and gigabytes: refused, with a pointer to
+# the preview (display) and LatticePart (exact geometry).
+MAX_SEPARATE_SOLIDS = 200000
 
 
 def beam_frustum(ca, ra, cb, rb):
@@ -26,15 +29,23 @@ def beam_frustum(ca, ra, cb, rb):
 
 
 def lattice_shape(lattice):
+    elements = lattice.ball_count + lattice.beam_count
+    if elements > MAX_SEPARATE_SOLIDS:
+        raise ValueError("Representation: %d balls and beams are too many to build as separate solids (at most %d); "
+                         "use the Preview representation to see it, or a LatticePart for exact geometry"
+                         % (elements, MAX_SEPARATE_SOLIDS))
     centers, radii = lattice.balls()
     a, b, ra, rb = lattice.beams()
     points = [FreeCAD.Vector(*c) for c in centers.tolist()]
-    if len(points) + len(a) > MAX_SOLID_ELEMENTS:
-        edges = [Part.LineSegment(points[i], points[j]).toShape() for i, j in zip(a.tolist(), b.tolist())]
-        return Part.Compound(edges if edges else [Part.Vertex(p) for p in points])
     solids = [Part.makeSphere(r, p) for p, r in zip(points, radii.tolist())]
     for i, j, r1, r2 in zip(a.tolist(), b.tolist(), ra.tolist(), rb.tolist()):
         frustum = beam_frustum(points[i], r1, points[j], r2)
         if frustum is not None:
             solids.append(frustum)
     return Part.Compound(solids)
+
+
+def empty_shape():
+    """The Shape of a lattice shown as a preview: nothing for FreeCAD to tessellate (the view provider draws the
+    beam axes itself; exports build the solids on demand)."""
+    return Part.Compound([])

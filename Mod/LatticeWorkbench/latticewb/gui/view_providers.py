@@ -1,13 +1,45 @@
-"""View providers: icons and display defaults of the workbench's features."""
+"""View providers: icons, the lattice preview, and display defaults of the workbench's features."""
+import FreeCAD
+
 from latticewb import resources
 
 
 class ViewProviderSteadyLattice:
+    """Draws a SteadyLattice: FreeCAD's own shape display for Solids, the scalable preview otherwise."""
+
     def __init__(self, vobj):
         vobj.Proxy = self
 
     def attach(self, vobj):
+        from latticewb.gui.lattice_preview import LatticePreview
         self.Object = vobj.Object
+        self.preview = LatticePreview()
+        vobj.RootNode.addChild(self.preview.switch)
+
+    def updateData(self, obj, prop):
+        if prop != "Shape" or not hasattr(self, "preview"):
+            return
+        from latticewb.features import steady_lattice
+        if steady_lattice.shows_solids(obj):
+            self.preview.clear()
+            return
+        lattice = getattr(obj.Proxy, "lattice", None)
+        if lattice is None:  # a document just opened: the kernel lattice is not saved, rebuild it
+            try:
+                lattice = steady_lattice.build_lattice(obj)
+            except ValueError:
+                self.preview.clear()
+                return
+        drawn = self.preview.update(lattice, obj.PreviewBudget)
+        if drawn < lattice.beam_count:
+            FreeCAD.Console.PrintMessage("%s: preview draws %d of %d beams (PreviewBudget)\n"
+                                         % (obj.Label, drawn, lattice.beam_count))
+        self.preview.show(obj.ViewObject.Visibility)
+
+    def onChanged(self, vobj, prop):
+        if prop == "Visibility" and hasattr(self, "preview"):
+            from latticewb.features import steady_lattice
+            self.preview.show(vobj.Visibility and not steady_lattice.shows_solids(vobj.Object))
 
     def getIcon(self):
         return resources.icon("SteadyLattice")
