@@ -1,6 +1,7 @@
-"""The scalable preview of a lattice: beam axes as one indexed line set and nodes as points, in Coin3D, fed from
-numpy arrays (pivy copies them in C++), so 10^6 beams appear in well under a second. A budget bounds what is
-drawn: past it, an evenly spread subset of the beams (every k-th in the stable order) is shown."""
+"""The scalable preview of a lattice: beam axes as one indexed line set, in Coin3D, fed from numpy arrays (pivy
+copies them in C++), so 10^6 beams appear in well under a second. Nodes are drawn as points only when the lattice
+has no beams (otherwise the beam ends show them, and a million extra points would double the frame time). A budget
+bounds what is drawn: past it, an evenly spread subset of the beams (every k-th in the stable order) is shown."""
 import math
 import time
 
@@ -22,12 +23,13 @@ class LatticePreview:
         node_colour = coin.SoBaseColor()
         node_colour.rgb = NODE_COLOUR
         style = coin.SoDrawStyle()
-        style.lineWidth = 1.5
+        style.lineWidth = 1.0  # wide lines cost much more per frame in software renderers
         style.pointSize = 3.0
         light = coin.SoLightModel()
         light.model = coin.SoLightModel.BASE_COLOR  # lines and points need no shading
         self.lines = coin.SoIndexedLineSet()
         self.points = coin.SoPointSet()
+        self.points.numPoints = 0
         for child in (light, style, self.coordinates, beam_colour, self.lines, node_colour, self.points):
             root.addChild(child)
         self.switch.addChild(root)
@@ -38,6 +40,7 @@ class LatticePreview:
         self.switch.whichChild = 0 if visible else coin.SO_SWITCH_NONE
 
     def clear(self):
+        self.points.numPoints = 0
         self.coordinates.point.setNum(0)
         self.lines.coordIndex.setNum(0)
         self.drawn_beams = 0
@@ -63,6 +66,7 @@ class LatticePreview:
         if len(index):
             flat = index.reshape(-1)
             self.lines.coordIndex.setValues(0, len(flat), flat)
+        self.points.numPoints = 0 if len(a) else len(points)  # points only for a lattice of lone balls
         self.drawn_beams = len(a)
         self.seconds = time.perf_counter() - start
         return self.drawn_beams
