@@ -40,3 +40,20 @@ def ink_fraction(path):
                 inked += 1
                 colours.add((c.red() // 16, c.green() // 16, c.blue() // 16))
     return inked / samples, len(colours)
+
+
+def save_window(name):
+    """The whole main window (tree, property editor, task panel and 3D view), for the user guide."""
+    from PySide import QtCore, QtGui
+    window = FreeCADGui.getMainWindow()
+    # a wider task dock, as a user would drag it, so the panels show whole
+    docks = [d for d in window.findChildren(QtGui.QDockWidget) if d.objectName() == "Combo View" and d.isVisible()]
+    if docks:
+        window.resizeDocks(docks, [400], QtCore.Qt.Horizontal)
+    for _ in range(5):
+        QtGui.QApplication.processEvents()
+    path = os.path.join(screenshot_dir(), name + ".png")
+    screen = QtGui.QApplication.primaryScreen()
+    pixmap = screen.grabWindow(window.winId()) if screen is not None else window.grab()
+    pixmap.save(path)
+    return path

@@ -1,10 +1,22 @@
 """The workbench in a real FreeCAD window: it activates, its command builds a lattice, the view shows it."""
 import unittest
 
+import time
+
 import FreeCAD
 import FreeCADGui
+from PySide import QtGui
 
-from screenshots import ink_fraction, save_view
+from latticewb.gui import lattice_task_panel
+from screenshots import ink_fraction, save_view, save_window
+
+
+def wait_for_recompute(seconds=1.0):
+    """Lets the task panel's debounce timer fire and the view update."""
+    end = time.time() + seconds
+    while time.time() < end:
+        QtGui.QApplication.processEvents()
+        time.sleep(0.02)
 
 
 class WorkbenchGuiTest(unittest.TestCase):
@@ -23,6 +35,7 @@ class WorkbenchGuiTest(unittest.TestCase):
         FreeCADGui.activateWorkbench("LatticeWorkbench")
         FreeCADGui.runCommand("Lattice_NewLattice")
         self.assertEqual(len(self.doc.Objects), 1)
+        lattice_task_panel.active_panel.accept()
         obj = self.doc.Objects[0]
         self.assertTrue(obj.isValid())
         self.assertGreater(obj.BeamCount, 0)
@@ -41,3 +54,46 @@ class WorkbenchGuiTest(unittest.TestCase):
         FreeCADGui.updateGui()
         empty, _ = ink_fraction(save_view("empty"))
         self.assertLess(empty, 0.02)
+
+    def test_task_panel_edits_live_and_cancel_restores(self):
+        FreeCADGui.activateWorkbench("LatticeWorkbench")
+        FreeCADGui.runCommand("Lattice_NewLattice")
+        panel = lattice_task_panel.active_panel
+        obj = self.doc.Objects[0]
+        beams = obj.BeamCount
+        panel.fields["CellsU"][0].setValue(obj.CellsU + 2)
+        panel.fields["TwistW"][0].setValue(5.0)
+        wait_for_recompute()
+        self.assertEqual(obj.CellsU, 5)
+        self.assertGreater(obj.BeamCount, beams)  # recomputed live
+        self.assertAlmostEqual(obj.TwistW.Value, 5.0)
+        self.assertIn("balls", panel.status.text())
+        FreeCADGui.Selection.clearSelection()
+        FreeCADGui.activeDocument().activeView().viewIsometric()
+        FreeCADGui.SendMsgToActiveView("ViewFit")
+        ink, _ = ink_fraction(save_window("task_panel"))
+        self.assertGreater(ink, 0.05)
+        panel.reject()  # the panel created the lattice: cancelling removes it
+        self.assertEqual(len(self.doc.Objects), 0)
+
+    def test_editing_an_existing_lattice_is_one_undo_step(self):
+        FreeCADGui.activateWorkbench("LatticeWorkbench")
+        from latticewb import api
+        self.doc.UndoMode = 1
+        self.doc.openTransaction("make")
+        obj = api.make_lattice(self.doc, preset="BCC", cells=(2, 2, 2))
+        self.doc.commitTransaction()
+        self.doc.recompute()
+        FreeCADGui.ActiveDocument.setEdit(obj.Name, 0)
+        panel = lattice_task_panel.active_panel
+        self.assertIsNotNone(panel)
+        panel.fields["TaperU"][0].setValue(-5.0)
+        panel.fields["BeamRadius"][0].setValue(50.0)  # wider than the nodes: clamped, and the widget shows it
+        wait_for_recompute()
+        self.assertAlmostEqual(obj.BeamRadius.Value, obj.NodeRadius.Value)
+        self.assertAlmostEqual(panel.fields["BeamRadius"][0].value(), obj.NodeRadius.Value)
+        panel.accept()
+        self.assertAlmostEqual(obj.TaperU, -5.0)
+        self.doc.undo()
+        self.assertAlmostEqual(obj.TaperU, 0.0)
+        self.assertAlmostEqual(obj.BeamRadius.Value, 0.8)

@@ -1,20 +1,15 @@
-"""Where the workbench's icons and presets are: installed beside the package, or at the top of a checkout."""
+"""Where the workbench's icons and presets are: Mod/LatticeWorkbench/Resources, beside this package (FreeCAD reads
+package.xml's icon relative to the Mod folder, so checkout and install share this layout)."""
 import os
 
-_HERE = os.path.dirname(os.path.abspath(__file__))
-_CANDIDATES = [
-    os.path.join(_HERE, os.pardir, "Resources"),                 # installed: Mod/LatticeWorkbench/Resources
-    os.path.join(_HERE, os.pardir, os.pardir, os.pardir, "Resources"),  # checkout: <repo>/Resources
-]
+# realpath: the Mod folder may be a symlink to a checkout
+_RESOURCES = os.path.join(os.path.dirname(os.path.dirname(os.path.realpath(__file__))), "Resources")
 
 
 def resource_dir():
-    for candidate in _CANDIDATES:
-        if os.path.isdir(candidate):
-            return os.path.normpath(candidate)
-    return os.path.normpath(_CANDIDATES[0])
+    return _RESOURCES
 
 
 def icon(name):
     """Path of the SVG icon `name` (without extension)."""
-    return os.path.join(resource_dir(), "icons", name + ".svg")
+    return os.path.join(_RESOURCES, "icons", name + ".svg")

@@ -1,5 +1,6 @@
 """View providers: icons, the lattice preview, and display defaults of the workbench's features."""
 import FreeCAD
+import FreeCADGui
 
 from latticewb import resources
 
@@ -43,6 +44,20 @@ class ViewProviderSteadyLattice:
 
     def getIcon(self):
         return resources.icon("SteadyLattice")
+
+    def setEdit(self, vobj, mode=0):
+        if mode != 0:
+            return None  # other modes (Transform, ...) are FreeCAD's own
+        from latticewb.gui.lattice_task_panel import LatticeTaskPanel
+        FreeCADGui.Control.showDialog(LatticeTaskPanel(vobj.Object))
+        return True
+
+    def unsetEdit(self, vobj, mode=0):
+        return None if mode != 0 else True
+
+    def doubleClicked(self, vobj):
+        FreeCADGui.ActiveDocument.setEdit(vobj.Object.Name, 0)
+        return True
 
     def dumps(self):
         return None
