@@ -9,6 +9,7 @@ MAX_SOLID_ELEMENTS = 5000
 # Past this many elements a compound of separate solids takes minutes and gigabytes: refused, with a pointer to
 # the preview (display) and LatticePart (exact geometry).
 MAX_SEPARATE_SOLIDS = 200000
+_REPORT_EVERY = 500  # elements between progress reports (~0.1 s of work)
 
 
 def beam_frustum(ca, ra, cb, rb):
@@ -28,7 +29,9 @@ def beam_frustum(ca, ra, cb, rb):
     return Part.makeCone(ra * cos_phi, rb * cos_phi, height, start, axis)
 
 
-def lattice_shape(lattice):
+def lattice_shape(lattice, report=None):
+    """The balls and beams as separate solids. report(fraction) -> False cancels (steadylattice.Cancelled)."""
+    from latticewb.progress import check_cancelled
     elements = lattice.ball_count + lattice.beam_count
     if elements > MAX_SEPARATE_SOLIDS:
         raise ValueError("Representation: %d balls and beams are too many to build as separate solids (at most %d); "
@@ -37,8 +40,14 @@ def lattice_shape(lattice):
     centers, radii = lattice.balls()
     a, b, ra, rb = lattice.beams()
     points = [FreeCAD.Vector(*c) for c in centers.tolist()]
-    solids = [Part.makeSphere(r, p) for p, r in zip(points, radii.tolist())]
-    for i, j, r1, r2 in zip(a.tolist(), b.tolist(), ra.tolist(), rb.tolist()):
+    solids = []
+    for q, (p, r) in enumerate(zip(points, radii.tolist())):
+        if q % _REPORT_EVERY == 0:
+            check_cancelled(report, q / elements)
+        solids.append(Part.makeSphere(r, p))
+    for q, (i, j, r1, r2) in enumerate(zip(a.tolist(), b.tolist(), ra.tolist(), rb.tolist())):
+        if q % _REPORT_EVERY == 0:
+            check_cancelled(report, (len(points) + q) / elements)
         frustum = beam_frustum(points[i], r1, points[j], r2)
         if frustum is not None:
             solids.append(frustum)

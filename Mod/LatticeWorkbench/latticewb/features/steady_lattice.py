@@ -166,7 +166,14 @@ class SteadyLattice:
         obj.BallCount = lattice.ball_count
         obj.BeamCount = lattice.beam_count
         if shows_solids(obj):
-            obj.Shape = lattice_shape.lattice_shape(lattice)
+            import steadylattice
+            from latticewb.progress import LongOperation
+            try:
+                with LongOperation("Building %s as solids" % obj.Label) as report:
+                    obj.Shape = lattice_shape.lattice_shape(lattice, report)
+            except steadylattice.Cancelled:
+                FreeCAD.Console.PrintWarning("%s: cancelled; the previous shape is kept\n" % obj.Label)
+                raise RuntimeError("%s: cancelled by the user" % obj.Label) from None
         else:
             obj.Shape = lattice_shape.empty_shape()
 
