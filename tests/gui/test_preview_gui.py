@@ -26,7 +26,7 @@ class PreviewGuiTest(unittest.TestCase):
         self.assertEqual(preview.drawn_beams, obj.BeamCount)
         self.assertEqual(preview.lines.coordIndex.getNum(), 3 * obj.BeamCount)
         self.assertEqual(preview.coordinates.point.getNum(), obj.BallCount)
-        ink, _ = ink_fraction(save_view("preview_million"))
+        ink, _ = ink_fraction(save_view("guide_preview_million"))
         self.assertGreater(ink, 0.1)
         # the budget bounds what is drawn
         obj.PreviewBudget = 100000
@@ -45,6 +45,6 @@ class PreviewGuiTest(unittest.TestCase):
         self.doc.recompute()
         FreeCADGui.Selection.clearSelection()
         FreeCADGui.activeDocument().activeView().viewTop()
-        ink, colours = ink_fraction(save_view("bent_lattice", isometric=False))
+        ink, colours = ink_fraction(save_view("guide_bent_lattice", isometric=False))
         self.assertGreater(ink, 0.05)
         self.assertGreater(colours, 5)

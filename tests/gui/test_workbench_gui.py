@@ -44,7 +44,7 @@ class WorkbenchGuiTest(unittest.TestCase):
         obj.ScaleW = 0.95
         self.doc.recompute()
         FreeCADGui.Selection.clearSelection()
-        path = save_view("steady_lattice")
+        path = save_view("guide_steady_lattice")
         ink, colours = ink_fraction(path)
         self.assertGreater(ink, 0.05, "the lattice should cover a visible part of the view")
         self.assertLess(ink, 0.95, "the view should not be one flat colour")
@@ -71,7 +71,7 @@ class WorkbenchGuiTest(unittest.TestCase):
         FreeCADGui.Selection.clearSelection()
         FreeCADGui.activeDocument().activeView().viewIsometric()
         FreeCADGui.SendMsgToActiveView("ViewFit")
-        ink, _ = ink_fraction(save_window("task_panel"))
+        ink, _ = ink_fraction(save_window("guide_task_panel"))
         self.assertGreater(ink, 0.05)
         panel.reject()  # the panel created the lattice: cancelling removes it
         self.assertEqual(len(self.doc.Objects), 0)
