@@ -1,0 +1,410 @@
+#include "steady/lattice_properties.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <map>
+#include <set>
+#include <string>
+#include <tuple>
+
+#include "steady/errors.hpp"
+#include "steady/hub.hpp"
+#include "steady/similar_copies.hpp"
+
+namespace steady {
+namespace {
+
+// Beams whose node ball crosses their mid-plane (beyond rounding) make a non-clean lattice.
+constexpr double kMidPlaneSlack = 1e-12;
+
+// The start indices x with 0 <= x < count and 0 <= x + offset < count: [lo, hi).
+struct IndexRange {
+  std::int64_t lo = 0, hi = 0;
+  std::int64_t size() const { return std::max<std::int64_t>(0, hi - lo); }
+};
+IndexRange pattern_range(std::int64_t count, int offset) {
+  return {std::max<std::int64_t>(0, -offset), std::min<std::int64_t>(count, count - offset)};
+}
+
+// Everything the sums need, in pre-placement coordinates (group (i,j,k) is W^k V^j U^i; G comes last).
+struct Context {
+  const Lattice& lattice;
+  const LatticeDefinition& def;
+  Similarity U, V, W;
+  Vec3 P{0.0};  // reference point, pre-placement
+  bool uv = false, uw = false, vw = false;  // pairs that commute exactly
+  HubPropertiesOptions hub_options;
+  mutable std::atomic<std::int64_t> beam_shapes{0}, hub_shapes{0}, overlapping{0};
+
+  explicit Context(const Lattice& l) : lattice(l), def(l.definition()), U(l.step_u()), V(l.step_v()), W(l.step_w()) {
+    uv = exactly_commute(U, V);
+    uw = exactly_commute(U, W);
+    vw = exactly_commute(V, W);
+    const Counts& c = def.counts;
+    P = group(c.u / 2, c.v / 2, c.w / 2).apply_point(def.nodes[0].center);
+  }
+  // W^k V^j U^i for any integers (outside the lattice too: virtual neighbours of border groups).
+  SimilarityTransform group(std::int64_t i, std::int64_t j, std::int64_t k) const {
+    return W.power(static_cast<double>(k)).transform() * V.power(static_cast<double>(j)).transform() *
+           U.power(static_cast<double>(i)).transform();
+  }
+  SimilarityTransform about_P(const SimilarityTransform& t) const { return transform_about(t, P); }
+  bool j_steady(const BeamPattern& b) const { return b.dk == 0 || vw; }
+  bool i_steady(const BeamPattern& b) const {
+    return j_steady(b) && (b.dj == 0 || uv) && (b.dk == 0 || uw);
+  }
+};
+
+MassMoments shifted(const MassMoments& m, const Vec3& by) {
+  SimilarityTransform t;
+  t.translation = by;
+  return transformed(m, t);
+}
+
+Ball node_ball(const Context& c, const SimilarityTransform& t, int n) {
+  const TemplateNode& node = c.def.nodes[n];
+  return {t.apply_point(node.center), t.scale * node.radius};
+}
+
+[[noreturn]] void fail_beam(int pattern, const std::string& what) {
+  fail_input("beams[" + std::to_string(pattern) + "]", what + ": the lattice is not clean there");
+}
+
+// The beam of pattern p from the group placed by ta to the group placed by tb: both stumps, each as if
+// alone, as moments about P.
+MassMoments beam_moments(const Context& c, const SimilarityTransform& ta, const SimilarityTransform& tb, int p) {
+  const BeamPattern& b = c.def.beams[p];
+  const Ball A = node_ball(c, ta, b.from), B = node_ball(c, tb, b.to);
+  const double ra = b.has_radii() ? *b.from_radius * ta.scale : A.radius;
+  const double rb = b.has_radii() ? *b.to_radius * tb.scale : B.radius;
+  const Vec3 d = B.center - A.center;
+  const double L = glm::length(d);
+  if (!(std::abs(ra - rb) < L)) fail_beam(p, "one end ball of a beam contains the other");
+  const double limit = 0.5 * L * (1.0 + kMidPlaneSlack);
+  if (A.radius > limit || B.radius > limit) fail_beam(p, "a node ball crosses the mid-plane of its beam");
+  const Vec3 axis = d / L;
+  const double sin_phi = (ra - rb) / L;
+  if (L + rb * sin_phi < 0.5 * L || L - ra * sin_phi < 0.5 * L)
+    fail_beam(p, "a beam end ball crosses the beam's mid-plane");
+  ++c.beam_shapes;
+  return shifted(stump_contribution_alone(A.radius, {axis, L, ra, rb}).moments, A.center - c.P) +
+         shifted(stump_contribution_alone(B.radius, {-axis, L, rb, ra}).moments, B.center - c.P);
+}
+
+// ---- balls ------------------------------------------------------------------------------------------
+
+MassMoments ball_sum(const Context& c) {
+  const Counts& n = c.def.counts;
+  MassMoments total;
+  for (int node = 0; node < static_cast<int>(c.def.nodes.size()); ++node) {
+    const TemplateNode& t = c.def.nodes[node];
+    const MassMoments one = shifted(ball_moments(t.radius), t.center - c.P);
+    const MassMoments row = sum_of_copies(c.U, c.P, one, n.u);
+    const MassMoments slab = sum_of_copies(c.V, c.P, row, n.v);
+    total += sum_of_copies(c.W, c.P, slab, n.w);
+  }
+  return total;
+}
+
+// ---- beams ------------------------------------------------------------------------------------------
+
+MassMoments pattern_sum(const Context& c, int p) {
+  const BeamPattern& b = c.def.beams[p];
+  const Counts& n = c.def.counts;
+  const IndexRange ri = pattern_range(n.u, b.di), rj = pattern_range(n.v, b.dj), rk = pattern_range(n.w, b.dk);
+  if (ri.size() == 0 || rj.size() == 0 || rk.size() == 0) return {};
+  const SimilarityTransform w_dk = c.W.power(b.dk).transform();
+  MassMoments slab;  // the pattern's beams of the virtual slab k = 0 (neighbours at k = dk)
+  if (c.i_steady(b)) {
+    const SimilarityTransform end = w_dk * c.V.power(b.dj).transform() * c.U.power(b.di).transform();
+    const MassMoments one = beam_moments(c, SimilarityTransform{}, end, p);
+    slab = sum_of_copies(c.V, c.P, sum_of_copies(c.U, c.P, one, ri.size(), ri.lo), rj.size(), rj.lo);
+  } else if (c.j_steady(b)) {
+    // one row (j = 0) of distinct shapes, then its similar copies along j
+    const SimilarityTransform head = w_dk * c.V.power(b.dj).transform();
+    std::vector<MassMoments> row(ri.size());
+    tbb::parallel_for(std::int64_t(0), ri.size(), [&](std::int64_t k) {
+      const std::int64_t i = ri.lo + k;
+      row[k] = beam_moments(c, c.U.power(static_cast<double>(i)).transform(),
+                            head * c.U.power(static_cast<double>(i + b.di)).transform(), p);
+    });
+    MassMoments sum;
+    for (const MassMoments& m : row) sum += m;
+    slab = sum_of_copies(c.V, c.P, sum, rj.size(), rj.lo);
+  } else {
+    std::vector<SimilarityTransform> u_powers(n.u);
+    for (std::int64_t i = 0; i < n.u; ++i) u_powers[i] = c.U.power(static_cast<double>(i)).transform();
+    std::vector<MassMoments> rows(rj.size());
+    tbb::parallel_for(std::int64_t(0), rj.size(), [&](std::int64_t r) {
+      const std::int64_t j = rj.lo + r;
+      const SimilarityTransform vj = c.V.power(static_cast<double>(j)).transform();
+      const SimilarityTransform head = w_dk * c.V.power(static_cast<double>(j + b.dj)).transform();
+      MassMoments sum;
+      for (std::int64_t i = ri.lo; i < ri.hi; ++i) sum += beam_moments(c, vj * u_powers[i], head * u_powers[i + b.di], p);
+      rows[r] = sum;
+    });
+    for (const MassMoments& m : rows) slab += m;
+  }
+  return sum_of_copies(c.W, c.P, slab, rk.size(), rk.lo);
+}
+
+// ---- hub overlap corrections ------------------------------------------------------------------------
+
+// A stump of node n's hub: its pattern, which end of it n is, and the offset to the other group.
+struct Incidence {
+  int pattern = 0;
+  bool at_start = true;
+  int di = 0, dj = 0, dk = 0;
+};
+
+std::vector<Incidence> incidences(const Context& c, int node) {
+  std::vector<Incidence> out;
+  for (int p = 0; p < static_cast<int>(c.def.beams.size()); ++p) {
+    const BeamPattern& b = c.def.beams[p];
+    if (b.from == node) out.push_back({p, true, b.di, b.dj, b.dk});
+    if (b.to == node) out.push_back({p, false, -b.di, -b.dj, -b.dk});
+  }
+  return out;
+}
+
+// Node n's hub placed by `base`, with the stumps `present` whose other groups are placed by `other`.
+HubShape hub_shape_at(const Context& c, int node, const SimilarityTransform& base, const std::vector<Incidence>& present,
+                      const std::vector<SimilarityTransform>& other) {
+  HubShape h;
+  const Ball ball = node_ball(c, base, node);
+  h.center = ball.center;
+  h.radius = ball.radius;
+  for (std::size_t k = 0; k < present.size(); ++k) {
+    const BeamPattern& b = c.def.beams[present[k].pattern];
+    const int far_node = present[k].at_start ? b.to : b.from;
+    const Ball far = node_ball(c, other[k], far_node);
+    const Vec3 d = far.center - ball.center;
+    const double L = glm::length(d);
+    double r = ball.radius, r_far = far.radius;
+    if (b.has_radii()) {
+      r = (present[k].at_start ? *b.from_radius : *b.to_radius) * base.scale;
+      r_far = (present[k].at_start ? *b.to_radius : *b.from_radius) * other[k].scale;
+    }
+    h.stumps.push_back({d / L, L, r, r_far});
+  }
+  return h;
+}
+
+MassMoments correction_about_P(const Context& c, const HubShape& h) {
+  ++c.hub_shapes;
+  const MassMoments corr = hub_overlap_correction(h, c.hub_options);
+  if (corr.volume == 0.0 && corr.area == 0.0) return {};
+  ++c.overlapping;
+  return shifted(corr, h.center - c.P);
+}
+
+// The classes of one direction: border indices alone, the interior as one range when the direction is
+// steady for the hub (else every index alone).
+struct IndexClass {
+  std::int64_t first = 0, count = 1;
+};
+std::vector<IndexClass> index_classes(std::int64_t n, int reach, bool steady) {
+  std::vector<IndexClass> out;
+  if (!steady || n <= 2 * static_cast<std::int64_t>(reach) + 1) {
+    for (std::int64_t i = 0; i < n; ++i) out.push_back({i, 1});
+    return out;
+  }
+  for (std::int64_t i = 0; i < reach; ++i) out.push_back({i, 1});
+  out.push_back({reach, n - 2 * reach});
+  for (std::int64_t i = n - reach; i < n; ++i) out.push_back({i, 1});
+  return out;
+}
+
+bool in_lattice(std::int64_t x, int offset, std::int64_t count) { return x + offset >= 0 && x + offset < count; }
+
+MassMoments class_sum(const Similarity& step, const Vec3& P, const MassMoments& m, const IndexClass& cls) {
+  return sum_of_copies(step, P, m, cls.count, cls.first);
+}
+
+MassMoments hub_corrections(const Context& c) {
+  const Counts& n = c.def.counts;
+  MassMoments total;
+  for (int node = 0; node < static_cast<int>(c.def.nodes.size()); ++node) {
+    const std::vector<Incidence> all = incidences(c, node);
+    if (all.size() < 2) continue;  // a lone stump overlaps nothing
+    bool i_steady = true, j_steady = true;
+    int reach_i = 0, reach_j = 0, reach_k = 0;
+    for (const Incidence& s : all) {
+      const BeamPattern& b = c.def.beams[s.pattern];
+      i_steady = i_steady && c.i_steady(b);
+      j_steady = j_steady && c.j_steady(b);
+      reach_i = std::max(reach_i, std::abs(s.di));
+      reach_j = std::max(reach_j, std::abs(s.dj));
+      reach_k = std::max(reach_k, std::abs(s.dk));
+    }
+    i_steady = i_steady && j_steady;
+    const auto ci = index_classes(n.u, reach_i, i_steady), cj = index_classes(n.v, reach_j, j_steady),
+               ck = index_classes(n.w, reach_k, true);
+    // Every (i, j, k) class triple: its representative hub in the frame the sums start from.
+    struct Job {
+      std::size_t a, b, k;
+    };
+    std::vector<Job> jobs;
+    for (std::size_t a = 0; a < ci.size(); ++a)
+      for (std::size_t bb = 0; bb < cj.size(); ++bb)
+        for (std::size_t k = 0; k < ck.size(); ++k) jobs.push_back({a, bb, k});
+    std::vector<MassMoments> parts(jobs.size());
+    tbb::parallel_for(std::size_t(0), jobs.size(), [&](std::size_t q) {
+      const IndexClass &xi = ci[jobs[q].a], &xj = cj[jobs[q].b], &xk = ck[jobs[q].k];
+      std::vector<Incidence> present;
+      std::vector<SimilarityTransform> other;
+      // Which stumps exist is decided at the class's first index (the interior has them all).
+      for (const Incidence& s : all)
+        if (in_lattice(xi.first, s.di, n.u) && in_lattice(xj.first, s.dj, n.v) && in_lattice(xk.first, s.dk, n.w))
+          present.push_back(s);
+      if (present.size() < 2) return;
+      // The representative's frame: what the remaining sums do not place.
+      SimilarityTransform base;
+      for (const Incidence& s : present) {
+        SimilarityTransform t;
+        if (i_steady) {
+          t = c.W.power(s.dk).transform() * c.V.power(s.dj).transform() * c.U.power(s.di).transform();
+        } else if (j_steady) {
+          t = c.W.power(s.dk).transform() * c.V.power(s.dj).transform() *
+              c.U.power(static_cast<double>(xi.first + s.di)).transform();
+        } else {
+          t = c.W.power(s.dk).transform() * c.V.power(static_cast<double>(xj.first + s.dj)).transform() *
+              c.U.power(static_cast<double>(xi.first + s.di)).transform();
+        }
+        other.push_back(t);
+      }
+      if (!i_steady) base = c.U.power(static_cast<double>(xi.first)).transform();
+      if (!j_steady) base = c.V.power(static_cast<double>(xj.first)).transform() * base;
+      MassMoments m = correction_about_P(c, hub_shape_at(c, node, base, present, other));
+      if (m.volume == 0.0 && m.area == 0.0) return;
+      if (i_steady) m = class_sum(c.U, c.P, m, xi);
+      if (j_steady) m = class_sum(c.V, c.P, m, xj);
+      parts[q] = class_sum(c.W, c.P, m, xk);
+    });
+    for (const MassMoments& m : parts) total += m;
+  }
+  return total;
+}
+
+// ---- omitted nodes ----------------------------------------------------------------------------------
+
+// The hub of an actual node (i, j, k, n) at its actual place, with the stumps whose other group exists,
+// all of them (`generic`, as if nothing were omitted) or only those whose beams exist.
+HubShape actual_hub(const Context& c, const NodeId& id, bool generic) {
+  const Counts& n = c.def.counts;
+  std::vector<Incidence> present;
+  std::vector<SimilarityTransform> other;
+  for (const Incidence& s : incidences(c, id.n)) {
+    if (!in_lattice(id.i, s.di, n.u) || !in_lattice(id.j, s.dj, n.v) || !in_lattice(id.k, s.dk, n.w)) continue;
+    if (!generic) {
+      const BeamPattern& b = c.def.beams[s.pattern];
+      const BeamId beam = s.at_start ? BeamId{id.i, id.j, id.k, s.pattern}
+                                     : BeamId{id.i - b.di, id.j - b.dj, id.k - b.dk, s.pattern};
+      if (!c.lattice.beam_exists(beam)) continue;
+    }
+    present.push_back(s);
+    other.push_back(c.group(id.i + s.di, id.j + s.dj, id.k + s.dk));
+  }
+  return hub_shape_at(c, id.n, c.group(id.i, id.j, id.k), present, other);
+}
+
+MassMoments omission_corrections(const Context& c) {
+  const auto& omitted = c.def.omitted;
+  if (omitted.empty()) return {};
+  MassMoments total;
+  // balls
+  std::set<std::tuple<std::int64_t, std::int64_t, std::int64_t, int>> gone;
+  for (const NodeId& id : omitted) gone.insert({id.i, id.j, id.k, id.n});
+  for (const auto& [i, j, k, node] : gone) {
+    const TemplateNode& t = c.def.nodes[node];
+    total -= transformed(shifted(ball_moments(t.radius), t.center - c.P), c.about_P(c.group(i, j, k)));
+  }
+  // beams killed by them, each once; and the hubs around them
+  std::set<std::tuple<std::int64_t, std::int64_t, std::int64_t, int>> killed;
+  std::set<std::tuple<std::int64_t, std::int64_t, std::int64_t, int>> touched(gone.begin(), gone.end());
+  const Counts& n = c.def.counts;
+  for (const auto& [i, j, k, node] : gone) {
+    for (const Incidence& s : incidences(c, node)) {
+      if (!in_lattice(i, s.di, n.u) || !in_lattice(j, s.dj, n.v) || !in_lattice(k, s.dk, n.w)) continue;
+      const BeamPattern& b = c.def.beams[s.pattern];
+      if (s.at_start) {
+        killed.insert({i, j, k, s.pattern});
+      } else {
+        killed.insert({i - b.di, j - b.dj, k - b.dk, s.pattern});
+      }
+      touched.insert({i + s.di, j + s.dj, k + s.dk, s.at_start ? b.to : b.from});
+    }
+  }
+  for (const auto& [i, j, k, p] : killed) {
+    const BeamPattern& b = c.def.beams[p];
+    total -= beam_moments(c, c.group(i, j, k), c.group(i + b.di, j + b.dj, k + b.dk), p);
+  }
+  for (const auto& [i, j, k, node] : touched) {
+    const NodeId id{i, j, k, node};
+    const MassMoments generic = correction_about_P(c, actual_hub(c, id, true));
+    const MassMoments actual = c.lattice.node_exists(id) ? correction_about_P(c, actual_hub(c, id, false)) : MassMoments{};
+    total += actual - generic;
+  }
+  return total;
+}
+
+LatticeProperties finish(const Context& c, const MassMoments& pre) {
+  // From pre-placement moments about P to world moments about G(P): only G's linear part acts.
+  const Similarity& G = c.lattice.placement();
+  SimilarityTransform linear = G.transform();
+  linear.translation = Vec3(0.0);
+  LatticeProperties out = properties_from_moments(transformed(pre, linear), G.apply_point(c.P));
+  if (!is_finite(out.moments) || !(out.volume > 0.0))
+    throw ResourceLimit("lattice properties: the moments overflow double precision (the lattice spans too many "
+                        "orders of magnitude of scale)");
+  out.beam_shapes = c.beam_shapes;
+  out.hub_shapes = c.hub_shapes;
+  out.overlapping_hub_shapes = c.overlapping;
+  return out;
+}
+
+}  // namespace
+
+LatticeProperties properties_from_moments(const MassMoments& m, const Vec3& reference) {
+  LatticeProperties out;
+  out.moments = m;
+  out.reference = reference;
+  out.volume = m.volume;
+  out.area = m.area;
+  out.centroid = reference + centroid(m);
+  out.inertia = central_inertia(m);
+  return out;
+}
+
+LatticeProperties lattice_properties(const Lattice& lattice, const LatticePropertiesOptions& options) {
+  Context c(lattice);
+  c.hub_options = options.hub;
+  MassMoments total = ball_sum(c);
+  for (int p = 0; p < lattice.pattern_count(); ++p) total += pattern_sum(c, p);
+  total += hub_corrections(c);
+  total += omission_corrections(c);
+  return finish(c, total);
+}
+
+LatticeProperties lattice_properties_brute_force(const Lattice& lattice, const LatticePropertiesOptions& options) {
+  Context c(lattice);
+  const Vec3 reference = lattice.placement().apply_point(c.P);
+  std::vector<MassMoments> parts(lattice.ball_count());
+  std::atomic<std::int64_t> overlapping{0};
+  tbb::parallel_for(std::int64_t(0), lattice.ball_count(), [&](std::int64_t index) {
+    const Hub h = hub(lattice, lattice.ball_id(index));
+    const HubProperties p = hub_properties(hub_shape(h), options.hub);
+    overlapping += !p.closed_form;
+    parts[index] = shifted(p.moments, h.ball.center - reference);
+  });
+  MassMoments total;
+  for (const MassMoments& m : parts) total += m;
+  LatticeProperties out = properties_from_moments(total, reference);
+  out.hub_shapes = lattice.ball_count();
+  out.overlapping_hub_shapes = overlapping;
+  return out;
+}
+
+}  // namespace steady

@@ -1,0 +1,70 @@
+#pragma once
+// Random small lattices for the property tests: steps close to unit translations (so beams stay long
+// compared with the balls), of every kind, with borders, both beam models and omitted nodes.
+#include <random>
+
+#include "steady/lattice.hpp"
+#include "test_support.hpp"
+
+namespace steady::test {
+
+enum class StepKind { Translations, TranslationsVW, General };
+
+// A step near translation by `dir`: composed with a small swirl/screw unless `translation_only`.
+inline Similarity near_translation(std::mt19937_64& rng, const Vec3& dir, bool translation_only) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const Similarity t = Similarity::translation(dir + 0.1 * random_vec(rng));
+  if (translation_only) return t;
+  const double angle = 0.15 * u(rng), scale = std::exp(0.04 * u(rng));
+  return Similarity::swirl(angle, random_unit(rng), random_vec(rng, 3.0), scale) * t;
+}
+
+struct LatticeOptions {
+  StepKind steps = StepKind::General;
+  bool hull_model = false;
+  int nodes = 2;
+  int patterns = 5;
+  int max_offset = 1;
+  int omitted = 0;
+};
+
+inline Lattice random_lattice(std::mt19937_64& rng, const LatticeOptions& o, Counts counts) {
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  std::uniform_int_distribution<int> offset(-o.max_offset, o.max_offset);
+  LatticeDefinition d;
+  for (int n = 0; n < o.nodes; ++n)
+    d.nodes.push_back({n == 0 ? Vec3(0.0) : Vec3(0.5, 0.5, 0.5) + 0.15 * random_vec(rng), 0.12 + 0.06 * u01(rng)});
+  while (static_cast<int>(d.beams.size()) < o.patterns) {
+    BeamPattern b;
+    b.from = std::uniform_int_distribution<int>(0, o.nodes - 1)(rng);
+    b.to = std::uniform_int_distribution<int>(0, o.nodes - 1)(rng);
+    b.di = offset(rng);
+    b.dj = offset(rng);
+    b.dk = offset(rng);
+    if (b.di == 0 && b.dj == 0 && b.dk == 0 && b.from == b.to) continue;
+    bool duplicate = false;
+    for (const auto& e : d.beams)
+      duplicate = duplicate || (e.from == b.from && e.to == b.to && e.di == b.di && e.dj == b.dj && e.dk == b.dk) ||
+                  (e.from == b.to && e.to == b.from && e.di == -b.di && e.dj == -b.dj && e.dk == -b.dk);
+    if (duplicate) continue;
+    if (!o.hull_model) {
+      b.from_radius = d.nodes[b.from].radius * (0.4 + 0.5 * u01(rng));
+      b.to_radius = d.nodes[b.to].radius * (0.4 + 0.5 * u01(rng));
+    }
+    d.beams.push_back(b);
+  }
+  d.counts = counts;
+  const bool all = o.steps == StepKind::Translations;
+  d.u = {near_translation(rng, Vec3(1, 0, 0), all)};
+  d.v = {near_translation(rng, Vec3(0, 1, 0), all || o.steps == StepKind::TranslationsVW)};
+  d.w = {near_translation(rng, Vec3(0, 0, 1), all || o.steps == StepKind::TranslationsVW)};
+  d.placement = random_similarity(rng, 5);
+  for (int k = 0; k < o.omitted; ++k)
+    d.omitted.push_back({std::uniform_int_distribution<std::int64_t>(0, counts.u - 1)(rng),
+                         std::uniform_int_distribution<std::int64_t>(0, counts.v - 1)(rng),
+                         std::uniform_int_distribution<std::int64_t>(0, counts.w - 1)(rng),
+                         std::uniform_int_distribution<int>(0, o.nodes - 1)(rng)});
+  return Lattice(d);
+}
+
+}  // namespace steady::test

@@ -1,0 +1,150 @@
+// Lattice properties from row and slab sums against the brute-force sum over every hub, on random
+// lattices (all kinds of steps, borders, both beam models, omitted nodes), and the series against the
+// paper's oracle.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "lattice_test_shapes.hpp"
+#include "steady/errors.hpp"
+#include "steady/lattice_properties.hpp"
+#include "steady/similar_copies.hpp"
+
+namespace steady {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+double max_abs(const Mat3& m) {
+  double v = 0.0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) v = std::max(v, std::abs(m[i][j]));
+  return v;
+}
+
+// Largest relative difference of the four properties (centroid relative to the lattice's size).
+double property_difference(const LatticeProperties& a, const LatticeProperties& b) {
+  const double size = std::sqrt(std::max(1e-300, a.inertia[0][0] + a.inertia[1][1] + a.inertia[2][2]) / a.volume);
+  double d = std::abs(a.volume - b.volume) / a.volume;
+  d = std::max(d, std::abs(a.area - b.area) / a.area);
+  d = std::max(d, glm::length(a.centroid - b.centroid) / size);
+  d = std::max(d, max_abs(a.inertia - b.inertia) / max_abs(a.inertia));
+  return d;
+}
+
+double g_worst = 0.0;
+
+// Compares the two; returns false when the lattice is refused (a node ball crosses a beam's mid-plane),
+// which both must then do.
+bool compare(const Lattice& lat, const char* what, int trial) {
+  LatticeProperties brute;
+  try {
+    brute = lattice_properties_brute_force(lat);
+  } catch (const InvalidInput&) {
+    EXPECT_THROW(lattice_properties(lat), InvalidInput) << what << " trial " << trial;
+    return false;
+  }
+  const LatticeProperties fast = lattice_properties(lat);
+  const double d = property_difference(brute, fast);
+  g_worst = std::max(g_worst, d);
+  EXPECT_LT(d, 1e-9) << what << " trial " << trial << ": volume " << fast.volume << " vs " << brute.volume;
+  return true;
+}
+
+TEST(LatticeProperties, MatchBruteForceOnRandomLattices) {
+  std::mt19937_64 rng(2024);
+  const test::StepKind kinds[3] = {test::StepKind::General, test::StepKind::TranslationsVW, test::StepKind::Translations};
+  int compared = 0;
+  for (int trial = 0; trial < 36; ++trial) {
+    test::LatticeOptions o;
+    o.steps = kinds[trial % 3];
+    o.nodes = 1 + trial % 3;
+    o.patterns = 3 + trial % 6;
+    o.max_offset = trial % 5 == 4 ? 2 : 1;
+    o.omitted = trial % 4 == 3 ? 3 : 0;
+    const Counts counts{2 + trial % 4, 1 + (trial / 2) % 4, 2 + (trial / 3) % 5};
+    compared += compare(test::random_lattice(rng, o, counts), "explicit radii", trial);
+  }
+  EXPECT_GE(compared, 24);
+}
+
+TEST(LatticeProperties, MatchBruteForceInTheHullModel) {
+  // Caps overlap in almost every hub: the overlap corrections carry real weight here.
+  std::mt19937_64 rng(77);
+  const test::StepKind kinds[3] = {test::StepKind::General, test::StepKind::TranslationsVW, test::StepKind::Translations};
+  for (int trial = 0; trial < 6; ++trial) {
+    test::LatticeOptions o;
+    o.steps = kinds[trial % 3];
+    o.hull_model = true;
+    o.nodes = 1 + trial % 2;
+    o.patterns = 3 + trial % 3;
+    o.omitted = trial % 2;
+    const Lattice lat = test::random_lattice(rng, o, Counts{3, 2 + trial % 2, 3});
+    EXPECT_TRUE(compare(lat, "hull model", trial));
+    EXPECT_GT(lattice_properties(lat).overlapping_hub_shapes, 0);
+  }
+}
+
+TEST(LatticeProperties, TranslationalLatticesNeedOnlyBorderShapes) {
+  // All steps translations: every interior hub and beam is a copy; the work must not grow with the counts.
+  for (bool hull : {false, true}) {
+    test::LatticeOptions o;
+    o.steps = test::StepKind::Translations;
+    o.patterns = 6;
+    o.hull_model = hull;
+    std::mt19937_64 rng(5), rng2(5);
+    const Lattice small = test::random_lattice(rng, o, Counts{7, 7, 7});
+    const Lattice large = test::random_lattice(rng2, o, Counts{700, 700, 700});
+    EXPECT_TRUE(compare(small, "translational", 0));
+    const LatticeProperties a = lattice_properties(small), b = lattice_properties(large);
+    EXPECT_EQ(a.beam_shapes, b.beam_shapes);
+    EXPECT_EQ(a.hub_shapes, b.hub_shapes);
+    EXPECT_GT(b.volume, 1e6 * a.volume);
+  }
+}
+
+TEST(LatticeProperties, SeriesReproduceThePaperOracle) {
+  // steady-lattices digest 11.2: slab 0 is one ball of volume 2 at G0 = (3, 1, 2), K = 12 copies by W.
+  const double v0 = 2.0, r0 = std::cbrt(3.0 * v0 / (4.0 * kPi));
+  const Vec3 G0(3, 1, 2), F(1, -2, 0.5), N = glm::normalize(Vec3(0.2, 0.3, 1.0));
+  MassMoments ball = ball_moments(r0);
+  SimilarityTransform to_g0;
+  to_g0.translation = G0;
+  ball = transformed(ball, to_g0);
+  auto spherical_inertia = [](const MassMoments& m) {
+    const Mat3 s = central_second_moment(m);
+    return s[0][0] + s[1][1] + s[2][2];
+  };
+  const MassMoments swirl = sum_of_copies(Similarity::swirl(0.25, N, F, 1.07), Vec3(0.0), ball, 12);
+  EXPECT_NEAR(swirl.volume, 92.63955944898, 1e-9);
+  EXPECT_NEAR(glm::length(centroid(swirl) - Vec3(-2.0191481671559, -0.5021803516376, 5.4642173547311)), 0.0, 1e-11);
+  EXPECT_NEAR(spherical_inertia(swirl), 1083.11702738327, 1e-8);
+  const MassMoments screw = sum_of_copies(Similarity::screw(0.25, N, F, 0.4), Vec3(0.0), ball, 12);
+  EXPECT_NEAR(glm::length(centroid(screw) - Vec3(0.5358110857811, 0.7028307716314, 4.9206206301560)), 0.0, 1e-11);
+  EXPECT_NEAR(spherical_inertia(screw), 165.36546518057, 1e-9);
+  // and the papers' hand checks: v0 = 1, m = 2, K = 3 gives 73 (volume) and 21 (area)
+  EXPECT_DOUBLE_EQ(geometric_sum(3 * std::log(2.0), 3), 73.0);
+  EXPECT_DOUBLE_EQ(geometric_sum(2 * std::log(2.0), 3), 21.0);
+}
+
+TEST(LatticeProperties, DoublingIsStableWhereTheFixedPointRunsAway) {
+  // A swirl with scale 1 + 1e-12: its fixed point is ~1e12 away and the papers' closed form cancels
+  // catastrophically; the doubling sum must agree with the plain sum of copies to rounding.
+  MassMoments ball = ball_moments(0.3);
+  const Similarity W = Similarity::swirl(0.1, Vec3(0, 0, 1), Vec3(0.0), 1.0 + 1e-12) * Similarity::translation({0, 0, 1});
+  MassMoments plain;
+  for (int k = 0; k < 1000; ++k) plain += transformed(ball, W.power(k).transform());
+  const MassMoments fast = sum_of_copies(W, Vec3(0.0), ball, 1000);
+  EXPECT_NEAR(fast.volume, plain.volume, 1e-13 * plain.volume);
+  EXPECT_LT(glm::length(centroid(fast) - centroid(plain)), 1e-10);
+  EXPECT_LT(max_abs(central_inertia(fast) - central_inertia(plain)), 1e-9 * max_abs(central_inertia(plain)));
+}
+
+TEST(LatticeProperties, ReportsTheLargestDifference) {
+  std::printf("[ report ] lattice properties vs brute force: largest relative difference %.3e\n", g_worst);
+}
+
+}  // namespace
+}  // namespace steady
