@@ -9,6 +9,7 @@
 #include <string>
 #include <tuple>
 
+#include "steady/clean_check.hpp"
 #include "steady/errors.hpp"
 #include "steady/hub.hpp"
 #include "steady/similar_copies.hpp"
@@ -378,14 +379,27 @@ LatticeProperties properties_from_moments(const MassMoments& m, const Vec3& refe
   return out;
 }
 
-LatticeProperties lattice_properties(const Lattice& lattice, const LatticePropertiesOptions& options) {
+LatticeProperties lattice_properties(const Lattice& lattice, const LatticePropertiesOptions& options,
+                                     Progress& progress) {
+  bool verified = false;
+  if (options.check_clean) {
+    const CleanReport report = check_clean(lattice, 10, progress);
+    if (report.overlap_count > 0)
+      fail_input("lattice", "not clean, " + report.describe() +
+                                ". Its properties are not the sum of its hubs', and the union of overlapping hubs is "
+                                "not computed: thin the beams or nodes, or space the groups further apart");
+    verified = report.verified;
+  }
+  progress.check();
   Context c(lattice);
   c.hub_options = options.hub;
   MassMoments total = ball_sum(c);
   for (int p = 0; p < lattice.pattern_count(); ++p) total += pattern_sum(c, p);
   total += hub_corrections(c);
   total += omission_corrections(c);
-  return finish(c, total);
+  LatticeProperties out = finish(c, total);
+  out.clean_verified = verified;
+  return out;
 }
 
 LatticeProperties lattice_properties_brute_force(const Lattice& lattice, const LatticePropertiesOptions& options) {

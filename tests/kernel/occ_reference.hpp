@@ -72,6 +72,18 @@ inline OccProperties occ_properties(const TopoDS_Shape& shape) {
   return p;
 }
 
+// A whole beam in the explicit-radii model: the frustum between its two tangent circles (the rest of the
+// hull of its end balls lies inside the node balls).
+inline TopoDS_Shape occ_beam(const Vec3& a, double ra, const Vec3& b, double rb) {
+  const double L = glm::length(b - a);
+  const Vec3 axis = (b - a) / L;
+  const double sin_phi = (ra - rb) / L, cos_phi = std::sqrt(1.0 - sin_phi * sin_phi);
+  const double x0 = ra * sin_phi, x1 = L + rb * sin_phi;
+  const gp_Ax2 axes(occ_point(a + x0 * axis), gp_Dir(axis.x, axis.y, axis.z));
+  if (std::abs(ra - rb) < 1e-12 * ra) return BRepPrimAPI_MakeCylinder(axes, ra, x1 - x0).Shape();
+  return BRepPrimAPI_MakeCone(axes, ra * cos_phi, rb * cos_phi, x1 - x0).Shape();
+}
+
 inline std::optional<TopoDS_Shape> occ_hub(const HubShape& h) {
   std::vector<TopoDS_Shape> pieces{BRepPrimAPI_MakeSphere(occ_point(h.center), h.radius).Shape()};
   for (const HubStump& s : h.stumps) pieces.push_back(occ_stump(h.center, s));

@@ -38,15 +38,22 @@ double g_worst = 0.0;
 
 // Compares the two; returns false when the lattice is refused (a node ball crosses a beam's mid-plane),
 // which both must then do.
+// Random lattices are seldom clean; the two sums of hubs must agree all the same, so the check is off.
+LatticePropertiesOptions sums_only() {
+  LatticePropertiesOptions o;
+  o.check_clean = false;
+  return o;
+}
+
 bool compare(const Lattice& lat, const char* what, int trial) {
   LatticeProperties brute;
   try {
     brute = lattice_properties_brute_force(lat);
   } catch (const InvalidInput&) {
-    EXPECT_THROW(lattice_properties(lat), InvalidInput) << what << " trial " << trial;
+    EXPECT_THROW(lattice_properties(lat, sums_only()), InvalidInput) << what << " trial " << trial;
     return false;
   }
-  const LatticeProperties fast = lattice_properties(lat);
+  const LatticeProperties fast = lattice_properties(lat, sums_only());
   const double d = property_difference(brute, fast);
   g_worst = std::max(g_worst, d);
   EXPECT_LT(d, 1e-9) << what << " trial " << trial << ": volume " << fast.volume << " vs " << brute.volume;
@@ -83,7 +90,7 @@ TEST(LatticeProperties, MatchBruteForceInTheHullModel) {
     o.omitted = trial % 2;
     const Lattice lat = test::random_lattice(rng, o, Counts{3, 2 + trial % 2, 3});
     EXPECT_TRUE(compare(lat, "hull model", trial));
-    EXPECT_GT(lattice_properties(lat).overlapping_hub_shapes, 0);
+    EXPECT_GT(lattice_properties(lat, sums_only()).overlapping_hub_shapes, 0);
   }
 }
 
@@ -98,7 +105,7 @@ TEST(LatticeProperties, TranslationalLatticesNeedOnlyBorderShapes) {
     const Lattice small = test::random_lattice(rng, o, Counts{7, 7, 7});
     const Lattice large = test::random_lattice(rng2, o, Counts{700, 700, 700});
     EXPECT_TRUE(compare(small, "translational", 0));
-    const LatticeProperties a = lattice_properties(small), b = lattice_properties(large);
+    const LatticeProperties a = lattice_properties(small, sums_only()), b = lattice_properties(large, sums_only());
     EXPECT_EQ(a.beam_shapes, b.beam_shapes);
     EXPECT_EQ(a.hub_shapes, b.hub_shapes);
     EXPECT_GT(b.volume, 1e6 * a.volume);

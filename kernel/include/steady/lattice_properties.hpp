@@ -22,11 +22,14 @@
 #include "steady/hub_properties.hpp"
 #include "steady/lattice.hpp"
 #include "steady/mass_moments.hpp"
+#include "steady/progress.hpp"
 
 namespace steady {
 
 struct LatticePropertiesOptions {
   HubPropertiesOptions hub;
+  // Run the clean check first and refuse a non-clean lattice (its properties are not the sum of its hubs').
+  bool check_clean = true;
 };
 
 struct LatticeProperties {
@@ -41,13 +44,17 @@ struct LatticeProperties {
   std::int64_t beam_shapes = 0;
   std::int64_t hub_shapes = 0;
   std::int64_t overlapping_hub_shapes = 0;
+  // The clean check's verdict: verified false when the lattice was too large to check (or not asked).
+  bool clean_verified = false;
 };
 
-// Closed form from row and slab sums. Throws InvalidInput for hubs that are not a ball with frustum stumps
-// (only in non-clean lattices), ResourceLimit when the moments overflow doubles.
-LatticeProperties lattice_properties(const Lattice& lattice, const LatticePropertiesOptions& options = {});
+// Closed form from row and slab sums. Throws InvalidInput naming the overlapping hubs when the lattice is not
+// clean (the exact union of overlapping hubs is not implemented), ResourceLimit when the moments overflow
+// doubles, Cancelled when the progress callback asks to stop.
+LatticeProperties lattice_properties(const Lattice& lattice, const LatticePropertiesOptions& options = {},
+                                     Progress& progress = no_progress());
 
-// The brute-force twin: every hub of the lattice built with hub() and summed. O(balls).
+// The brute-force twin: every hub of the lattice built with hub() and summed. O(balls). No clean check.
 LatticeProperties lattice_properties_brute_force(const Lattice& lattice, const LatticePropertiesOptions& options = {});
 
 // Centroid and inertia from moments about a reference point.
