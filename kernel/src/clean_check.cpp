@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <mutex>
 #include <sstream>
 #include <unordered_map>
@@ -253,11 +254,23 @@ CleanReport check_clean(const Lattice& lattice, std::size_t max_reports, Progres
   const std::int64_t w = c.w;
   const std::int64_t rep = std::min<std::int64_t>(D, w - 1);
   const std::vector<HubPieces> rep_slab = pieces_of(lattice, slab_nodes(lattice, rep));
-  Vec3 center(0.0);
-  for (const HubPieces& h : rep_slab) center += h.center;
-  center /= static_cast<double>(std::max<std::size_t>(1, rep_slab.size()));
-  double radius = 0.0;
-  for (const HubPieces& h : rep_slab) radius = std::max(radius, glm::length(h.center - center) + h.reach);
+  // The representative slab's box (hub bounding spheres); slab rep + delta lies in the box spanned by the
+  // images of its corners under W^delta (a similarity maps a box into the box of its corners' images).
+  Vec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+  for (const HubPieces& h : rep_slab) {
+    lo = glm::min(lo, h.center - h.reach);
+    hi = glm::max(hi, h.center + h.reach);
+  }
+  auto image_box_meets = [&](const Similarity& S) {
+    Vec3 ilo(std::numeric_limits<double>::max()), ihi(-std::numeric_limits<double>::max());
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3 p(corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z);
+      const Vec3 q = S.apply_point(p);
+      ilo = glm::min(ilo, q);
+      ihi = glm::max(ihi, q);
+    }
+    return ilo.x < hi.x && lo.x < ihi.x && ilo.y < hi.y && lo.y < ihi.y && ilo.z < hi.z && lo.z < ihi.z;
+  };
   // The (k1, k2) slab pairs to compare: every pair touching a border slab, one interior representative.
   struct SlabPair {
     std::int64_t k1, k2, multiplicity;
@@ -265,10 +278,7 @@ CleanReport check_clean(const Lattice& lattice, std::size_t max_reports, Progres
   std::vector<SlabPair> pairs;
   const Similarity& W = lattice.step_w();
   for (std::int64_t delta = 0; delta < w; ++delta) {
-    if (delta > 0) {
-      const double s = std::exp(W.log_scale() * static_cast<double>(delta));
-      if (!(glm::length(W.power(static_cast<double>(delta)).apply_point(center) - center) < radius * (1.0 + s))) continue;
-    }
+    if (delta > 0 && !rep_slab.empty() && !image_box_meets(W.power(static_cast<double>(delta)))) continue;
     for (std::int64_t k = 0; k + delta < w; ++k) {
       const bool border = k < D || k + delta >= w - D;
       if (border) {

@@ -13,86 +13,12 @@
 #include "steady/errors.hpp"
 #include "steady/hub.hpp"
 #include "steady/similar_copies.hpp"
+#include "lattice_sums.hpp"
 
 namespace steady {
 namespace {
 
-// Beams whose node ball crosses their mid-plane (beyond rounding) make a non-clean lattice.
-constexpr double kMidPlaneSlack = 1e-12;
-
-// The start indices x with 0 <= x < count and 0 <= x + offset < count: [lo, hi).
-struct IndexRange {
-  std::int64_t lo = 0, hi = 0;
-  std::int64_t size() const { return std::max<std::int64_t>(0, hi - lo); }
-};
-IndexRange pattern_range(std::int64_t count, int offset) {
-  return {std::max<std::int64_t>(0, -offset), std::min<std::int64_t>(count, count - offset)};
-}
-
-// Everything the sums need, in pre-placement coordinates (group (i,j,k) is W^k V^j U^i; G comes last).
-struct Context {
-  const Lattice& lattice;
-  const LatticeDefinition& def;
-  Similarity U, V, W;
-  Vec3 P{0.0};  // reference point, pre-placement
-  bool uv = false, uw = false, vw = false;  // pairs that commute exactly
-  HubPropertiesOptions hub_options;
-  mutable std::atomic<std::int64_t> beam_shapes{0}, hub_shapes{0}, overlapping{0};
-
-  explicit Context(const Lattice& l) : lattice(l), def(l.definition()), U(l.step_u()), V(l.step_v()), W(l.step_w()) {
-    uv = exactly_commute(U, V);
-    uw = exactly_commute(U, W);
-    vw = exactly_commute(V, W);
-    const Counts& c = def.counts;
-    P = group(c.u / 2, c.v / 2, c.w / 2).apply_point(def.nodes[0].center);
-  }
-  // W^k V^j U^i for any integers (outside the lattice too: virtual neighbours of border groups).
-  SimilarityTransform group(std::int64_t i, std::int64_t j, std::int64_t k) const {
-    return W.power(static_cast<double>(k)).transform() * V.power(static_cast<double>(j)).transform() *
-           U.power(static_cast<double>(i)).transform();
-  }
-  SimilarityTransform about_P(const SimilarityTransform& t) const { return transform_about(t, P); }
-  bool j_steady(const BeamPattern& b) const { return b.dk == 0 || vw; }
-  bool i_steady(const BeamPattern& b) const {
-    return j_steady(b) && (b.dj == 0 || uv) && (b.dk == 0 || uw);
-  }
-};
-
-MassMoments shifted(const MassMoments& m, const Vec3& by) {
-  SimilarityTransform t;
-  t.translation = by;
-  return transformed(m, t);
-}
-
-Ball node_ball(const Context& c, const SimilarityTransform& t, int n) {
-  const TemplateNode& node = c.def.nodes[n];
-  return {t.apply_point(node.center), t.scale * node.radius};
-}
-
-[[noreturn]] void fail_beam(int pattern, const std::string& what) {
-  fail_input("beams[" + std::to_string(pattern) + "]", what + ": the lattice is not clean there");
-}
-
-// The beam of pattern p from the group placed by ta to the group placed by tb: both stumps, each as if
-// alone, as moments about P.
-MassMoments beam_moments(const Context& c, const SimilarityTransform& ta, const SimilarityTransform& tb, int p) {
-  const BeamPattern& b = c.def.beams[p];
-  const Ball A = node_ball(c, ta, b.from), B = node_ball(c, tb, b.to);
-  const double ra = b.has_radii() ? *b.from_radius * ta.scale : A.radius;
-  const double rb = b.has_radii() ? *b.to_radius * tb.scale : B.radius;
-  const Vec3 d = B.center - A.center;
-  const double L = glm::length(d);
-  if (!(std::abs(ra - rb) < L)) fail_beam(p, "one end ball of a beam contains the other");
-  const double limit = 0.5 * L * (1.0 + kMidPlaneSlack);
-  if (A.radius > limit || B.radius > limit) fail_beam(p, "a node ball crosses the mid-plane of its beam");
-  const Vec3 axis = d / L;
-  const double sin_phi = (ra - rb) / L;
-  if (L + rb * sin_phi < 0.5 * L || L - ra * sin_phi < 0.5 * L)
-    fail_beam(p, "a beam end ball crosses the beam's mid-plane");
-  ++c.beam_shapes;
-  return shifted(stump_contribution_alone(A.radius, {axis, L, ra, rb}).moments, A.center - c.P) +
-         shifted(stump_contribution_alone(B.radius, {-axis, L, rb, ra}).moments, B.center - c.P);
-}
+using namespace detail;
 
 // ---- balls ------------------------------------------------------------------------------------------
 
@@ -153,46 +79,6 @@ MassMoments pattern_sum(const Context& c, int p) {
 
 // ---- hub overlap corrections ------------------------------------------------------------------------
 
-// A stump of node n's hub: its pattern, which end of it n is, and the offset to the other group.
-struct Incidence {
-  int pattern = 0;
-  bool at_start = true;
-  int di = 0, dj = 0, dk = 0;
-};
-
-std::vector<Incidence> incidences(const Context& c, int node) {
-  std::vector<Incidence> out;
-  for (int p = 0; p < static_cast<int>(c.def.beams.size()); ++p) {
-    const BeamPattern& b = c.def.beams[p];
-    if (b.from == node) out.push_back({p, true, b.di, b.dj, b.dk});
-    if (b.to == node) out.push_back({p, false, -b.di, -b.dj, -b.dk});
-  }
-  return out;
-}
-
-// Node n's hub placed by `base`, with the stumps `present` whose other groups are placed by `other`.
-HubShape hub_shape_at(const Context& c, int node, const SimilarityTransform& base, const std::vector<Incidence>& present,
-                      const std::vector<SimilarityTransform>& other) {
-  HubShape h;
-  const Ball ball = node_ball(c, base, node);
-  h.center = ball.center;
-  h.radius = ball.radius;
-  for (std::size_t k = 0; k < present.size(); ++k) {
-    const BeamPattern& b = c.def.beams[present[k].pattern];
-    const int far_node = present[k].at_start ? b.to : b.from;
-    const Ball far = node_ball(c, other[k], far_node);
-    const Vec3 d = far.center - ball.center;
-    const double L = glm::length(d);
-    double r = ball.radius, r_far = far.radius;
-    if (b.has_radii()) {
-      r = (present[k].at_start ? *b.from_radius : *b.to_radius) * base.scale;
-      r_far = (present[k].at_start ? *b.to_radius : *b.from_radius) * other[k].scale;
-    }
-    h.stumps.push_back({d / L, L, r, r_far});
-  }
-  return h;
-}
-
 MassMoments correction_about_P(const Context& c, const HubShape& h) {
   ++c.hub_shapes;
   const MassMoments corr = hub_overlap_correction(h, c.hub_options);
@@ -200,25 +86,6 @@ MassMoments correction_about_P(const Context& c, const HubShape& h) {
   ++c.overlapping;
   return shifted(corr, h.center - c.P);
 }
-
-// The classes of one direction: border indices alone, the interior as one range when the direction is
-// steady for the hub (else every index alone).
-struct IndexClass {
-  std::int64_t first = 0, count = 1;
-};
-std::vector<IndexClass> index_classes(std::int64_t n, int reach, bool steady) {
-  std::vector<IndexClass> out;
-  if (!steady || n <= 2 * static_cast<std::int64_t>(reach) + 1) {
-    for (std::int64_t i = 0; i < n; ++i) out.push_back({i, 1});
-    return out;
-  }
-  for (std::int64_t i = 0; i < reach; ++i) out.push_back({i, 1});
-  out.push_back({reach, n - 2 * reach});
-  for (std::int64_t i = n - reach; i < n; ++i) out.push_back({i, 1});
-  return out;
-}
-
-bool in_lattice(std::int64_t x, int offset, std::int64_t count) { return x + offset >= 0 && x + offset < count; }
 
 MassMoments class_sum(const Similarity& step, const Vec3& P, const MassMoments& m, const IndexClass& cls) {
   return sum_of_copies(step, P, m, cls.count, cls.first);
@@ -290,26 +157,6 @@ MassMoments hub_corrections(const Context& c) {
 }
 
 // ---- omitted nodes ----------------------------------------------------------------------------------
-
-// The hub of an actual node (i, j, k, n) at its actual place, with the stumps whose other group exists,
-// all of them (`generic`, as if nothing were omitted) or only those whose beams exist.
-HubShape actual_hub(const Context& c, const NodeId& id, bool generic) {
-  const Counts& n = c.def.counts;
-  std::vector<Incidence> present;
-  std::vector<SimilarityTransform> other;
-  for (const Incidence& s : incidences(c, id.n)) {
-    if (!in_lattice(id.i, s.di, n.u) || !in_lattice(id.j, s.dj, n.v) || !in_lattice(id.k, s.dk, n.w)) continue;
-    if (!generic) {
-      const BeamPattern& b = c.def.beams[s.pattern];
-      const BeamId beam = s.at_start ? BeamId{id.i, id.j, id.k, s.pattern}
-                                     : BeamId{id.i - b.di, id.j - b.dj, id.k - b.dk, s.pattern};
-      if (!c.lattice.beam_exists(beam)) continue;
-    }
-    present.push_back(s);
-    other.push_back(c.group(id.i + s.di, id.j + s.dj, id.k + s.dk));
-  }
-  return hub_shape_at(c, id.n, c.group(id.i, id.j, id.k), present, other);
-}
 
 MassMoments omission_corrections(const Context& c) {
   const auto& omitted = c.def.omitted;

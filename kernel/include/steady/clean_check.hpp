@@ -8,8 +8,8 @@
 // size (GJK on support mappings): pieces that only touch are not reported. Candidate hub pairs come from a
 // grid of hub bounding spheres. For lattices with more than kDirectCleanCheckHubs hubs, the check runs on a
 // window of k-slabs and relies on steadiness: hubs of slab k are W^k images of slab 0's, so every pair of
-// hubs k-slabs apart is an image of a pair in the window, and slabs farther apart than their bounding
-// spheres allow are never compared. Beyond kMaxCleanCheckHubs the check is not run (verified = false).
+// hubs k-slabs apart is an image of a pair in the window, and slabs whose bounding boxes (the box of a slab
+// mapped by W^delta) do not meet are never compared. Beyond kMaxCleanCheckHubs the check is not run (verified = false).
 #include <cstdint>
 #include <string>
 #include <vector>
