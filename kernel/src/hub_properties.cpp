@@ -546,12 +546,46 @@ HubProperties hub_properties(const HubShape& hub, const HubPropertiesOptions& op
   return out;
 }
 
+bool any_stump_caps_overlap(const HubShape& hub) { return any_stump_caps_overlap(hub, 1.0); }
+
+bool any_stump_caps_overlap(const HubShape& hub, double radius_scale) {
+  const std::size_t m = hub.stumps.size();
+  if (m < 2) return false;
+  // Caps as (cos, sin) of their half-angles; gamma < a + b (both in [0, pi]) compared through cosines,
+  // without trigonometric calls: the same decision as stump_caps_overlap (margin included).
+  thread_local std::vector<std::pair<double, double>> caps;
+  caps.resize(m);
+  const double R = radius_scale * hub.radius;
+  for (std::size_t i = 0; i < m; ++i) {
+    const HubStump& st = hub.stumps[i];
+    const double r = radius_scale * st.radius;
+    const double sin_phi = radius_scale * (st.radius - st.other_radius) / st.length;
+    const double cos_phi = std::sqrt((1.0 - sin_phi) * (1.0 + sin_phi));
+    const double x = r * sin_phi + cos_phi * std::sqrt(std::max(0.0, (R - r) * (R + r)));
+    const double y = (r - x * sin_phi) / cos_phi;
+    const double len = std::hypot(x, y);
+    caps[i] = {x / len, y / len};
+  }
+  const double cos_margin = std::cos(kCapOverlapMargin), sin_margin = std::sin(kCapOverlapMargin);
+  for (std::size_t i = 0; i < m; ++i)
+    for (std::size_t j = i + 1; j < m; ++j) {
+      // cos and sin of (a + b - margin)
+      const double c_ab = caps[i].first * caps[j].first - caps[i].second * caps[j].second;
+      const double s_ab = caps[i].second * caps[j].first + caps[i].first * caps[j].second;
+      const double c_sum = c_ab * cos_margin + s_ab * sin_margin, s_sum = s_ab * cos_margin - c_ab * sin_margin;
+      // gamma < a + b - margin  <=>  cos(gamma) > cos(a + b - margin) when a + b - margin is in [0, pi];
+      // beyond pi every gamma is smaller (overlap), below 0 none is.
+      if (s_sum < 0.0) {
+        if (c_sum < 0.0) return true;  // a + b - margin > pi
+        continue;                      // a + b - margin < 0
+      }
+      if (glm::dot(hub.stumps[i].axis, hub.stumps[j].axis) > c_sum) return true;
+    }
+  return false;
+}
+
 MassMoments hub_overlap_correction(const HubShape& hub, const HubPropertiesOptions& options) {
-  bool any = false;
-  for (std::size_t i = 0; i < hub.stumps.size() && !any; ++i)
-    for (std::size_t j = i + 1; j < hub.stumps.size() && !any; ++j)
-      any = stump_caps_overlap(hub.radius, hub.stumps[i], hub.stumps[j]);
-  if (!any) return {};
+  if (!any_stump_caps_overlap(hub)) return {};
   const HubProperties p = hub_properties(hub, options);
   MassMoments correction = p.moments - ball_moments(hub.radius);
   for (const HubStump& s : hub.stumps) correction -= stump_contribution_alone(hub.radius, s).moments;

@@ -42,32 +42,32 @@ MassMoments pattern_sum(const Context& c, int p) {
   const Counts& n = c.def.counts;
   const IndexRange ri = pattern_range(n.u, b.di), rj = pattern_range(n.v, b.dj), rk = pattern_range(n.w, b.dk);
   if (ri.size() == 0 || rj.size() == 0 || rk.size() == 0) return {};
-  const SimilarityTransform w_dk = c.W.power(b.dk).transform();
+  const SimilarityTransform w_dk = c.w_pow(b.dk);
   MassMoments slab;  // the pattern's beams of the virtual slab k = 0 (neighbours at k = dk)
   if (c.i_steady(b)) {
-    const SimilarityTransform end = w_dk * c.V.power(b.dj).transform() * c.U.power(b.di).transform();
+    const SimilarityTransform end = w_dk * c.v_pow(b.dj) * c.u_pow(b.di);
     const MassMoments one = beam_moments(c, SimilarityTransform{}, end, p);
     slab = sum_of_copies(c.V, c.P, sum_of_copies(c.U, c.P, one, ri.size(), ri.lo), rj.size(), rj.lo);
   } else if (c.j_steady(b)) {
     // one row (j = 0) of distinct shapes, then its similar copies along j
-    const SimilarityTransform head = w_dk * c.V.power(b.dj).transform();
+    const SimilarityTransform head = w_dk * c.v_pow(b.dj);
     std::vector<MassMoments> row(ri.size());
     tbb::parallel_for(std::int64_t(0), ri.size(), [&](std::int64_t k) {
       const std::int64_t i = ri.lo + k;
-      row[k] = beam_moments(c, c.U.power(static_cast<double>(i)).transform(),
-                            head * c.U.power(static_cast<double>(i + b.di)).transform(), p);
+      row[k] = beam_moments(c, c.u_pow(i),
+                            head * c.u_pow(i + b.di), p);
     });
     MassMoments sum;
     for (const MassMoments& m : row) sum += m;
     slab = sum_of_copies(c.V, c.P, sum, rj.size(), rj.lo);
   } else {
     std::vector<SimilarityTransform> u_powers(n.u);
-    for (std::int64_t i = 0; i < n.u; ++i) u_powers[i] = c.U.power(static_cast<double>(i)).transform();
+    for (std::int64_t i = 0; i < n.u; ++i) u_powers[i] = c.u_pow(i);
     std::vector<MassMoments> rows(rj.size());
     tbb::parallel_for(std::int64_t(0), rj.size(), [&](std::int64_t r) {
       const std::int64_t j = rj.lo + r;
-      const SimilarityTransform vj = c.V.power(static_cast<double>(j)).transform();
-      const SimilarityTransform head = w_dk * c.V.power(static_cast<double>(j + b.dj)).transform();
+      const SimilarityTransform vj = c.v_pow(j);
+      const SimilarityTransform head = w_dk * c.v_pow(j + b.dj);
       MassMoments sum;
       for (std::int64_t i = ri.lo; i < ri.hi; ++i) sum += beam_moments(c, vj * u_powers[i], head * u_powers[i + b.di], p);
       rows[r] = sum;
@@ -133,18 +133,18 @@ MassMoments hub_corrections(const Context& c) {
       for (const Incidence& s : present) {
         SimilarityTransform t;
         if (i_steady) {
-          t = c.W.power(s.dk).transform() * c.V.power(s.dj).transform() * c.U.power(s.di).transform();
+          t = c.w_pow(s.dk) * c.v_pow(s.dj) * c.u_pow(s.di);
         } else if (j_steady) {
-          t = c.W.power(s.dk).transform() * c.V.power(s.dj).transform() *
-              c.U.power(static_cast<double>(xi.first + s.di)).transform();
+          t = c.w_pow(s.dk) * c.v_pow(s.dj) *
+              c.u_pow(xi.first + s.di);
         } else {
-          t = c.W.power(s.dk).transform() * c.V.power(static_cast<double>(xj.first + s.dj)).transform() *
-              c.U.power(static_cast<double>(xi.first + s.di)).transform();
+          t = c.w_pow(s.dk) * c.v_pow(xj.first + s.dj) *
+              c.u_pow(xi.first + s.di);
         }
         other.push_back(t);
       }
-      if (!i_steady) base = c.U.power(static_cast<double>(xi.first)).transform();
-      if (!j_steady) base = c.V.power(static_cast<double>(xj.first)).transform() * base;
+      if (!i_steady) base = c.u_pow(xi.first);
+      if (!j_steady) base = c.v_pow(xj.first) * base;
       MassMoments m = correction_about_P(c, hub_shape_at(c, node, base, present, other));
       if (m.volume == 0.0 && m.area == 0.0) return;
       if (i_steady) m = class_sum(c.U, c.P, m, xi);

@@ -13,6 +13,9 @@
 
 namespace steady::detail {
 
+// Powers of a step cached at most (104 bytes each): enough for every row a sum enumerates in practice.
+constexpr std::int64_t kMaxCachedPowers = 1'000'000;
+
 // Beams whose node ball crosses their mid-plane (beyond rounding) make a non-clean lattice.
 constexpr double kMidPlaneSlack = 1e-12;
 
@@ -39,13 +42,37 @@ struct Context {
     uv = exactly_commute(U, V);
     uw = exactly_commute(U, W);
     vw = exactly_commute(V, W);
+    cache_powers();
     const Counts& c = def.counts;
     P = group(c.u / 2, c.v / 2, c.w / 2).apply_point(def.nodes[0].center);
   }
+  // Powers of the steps as matrices, cached for the indices the sums visit (every group and its neighbours
+  // for U and V, the pattern offsets for W): the sums compose them instead of exponentiating generators.
+  std::int64_t reach = 0;
+  std::vector<SimilarityTransform> u_powers, v_powers, w_powers;  // index + reach
+  static SimilarityTransform cached(const Similarity& s, const std::vector<SimilarityTransform>& cache,
+                                    std::int64_t reach, std::int64_t n) {
+    const std::int64_t at = n + reach;
+    if (at >= 0 && at < static_cast<std::int64_t>(cache.size())) return cache[at];
+    return s.power(static_cast<double>(n)).transform();
+  }
+  SimilarityTransform u_pow(std::int64_t i) const { return cached(U, u_powers, reach, i); }
+  SimilarityTransform v_pow(std::int64_t j) const { return cached(V, v_powers, reach, j); }
+  SimilarityTransform w_pow(std::int64_t k) const { return cached(W, w_powers, reach, k); }
+  void cache_powers() {
+    for (const BeamPattern& b : def.beams) reach = std::max<std::int64_t>({reach, std::abs(b.di), std::abs(b.dj), std::abs(b.dk)});
+    auto fill = [this](const Similarity& s, std::vector<SimilarityTransform>& cache, std::int64_t count) {
+      if (count + 2 * reach > kMaxCachedPowers) return;  // rows this long are summed in closed form anyway
+      cache.resize(static_cast<std::size_t>(count + 2 * reach));
+      for (std::int64_t n = -reach; n < count + reach; ++n) cache[n + reach] = s.power(static_cast<double>(n)).transform();
+    };
+    fill(U, u_powers, def.counts.u);
+    fill(V, v_powers, def.counts.v);
+    fill(W, w_powers, 1);
+  }
   // W^k V^j U^i for any integers (outside the lattice too: virtual neighbours of border groups).
   SimilarityTransform group(std::int64_t i, std::int64_t j, std::int64_t k) const {
-    return W.power(static_cast<double>(k)).transform() * V.power(static_cast<double>(j)).transform() *
-           U.power(static_cast<double>(i)).transform();
+    return w_pow(k) * v_pow(j) * u_pow(i);
   }
   SimilarityTransform about_P(const SimilarityTransform& t) const { return transform_about(t, P); }
   bool j_steady(const BeamPattern& b) const { return b.dk == 0 || vw; }

@@ -1,11 +1,13 @@
 #include "steady/radius_scaling.hpp"
 
 #include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <set>
 #include <sstream>
 #include <tuple>
@@ -55,11 +57,19 @@ double scale_cubed_sum(const Similarity& step, std::int64_t first, std::int64_t 
 }  // namespace
 
 struct RadiusScaledVolume::Model {
+  explicit Model(const Lattice& l) : lattice(l) {}
+  Lattice lattice;
   double balls = 0.0;  // volume of all balls at scale 1
   std::vector<BeamShape> beams;
-  std::vector<HubClass> hubs;
+  // Every hub of the lattice is, up to a similarity, a subset of one of these (its node's hub with all
+  // its stumps, neighbours outside the lattice included): no overlap among them means none anywhere.
+  std::vector<HubShape> full_hubs;
+  // The hub classes and their copy weights, for the overlap corrections: built when first needed.
+  mutable std::once_flag classes_built;
+  mutable std::vector<HubClass> hubs;
   double max_scale = std::numeric_limits<double>::infinity();
   HubPropertiesOptions hub_options;
+  void build_hub_classes() const;
 };
 
 Lattice with_radius_scale(const Lattice& lattice, double scale) {
@@ -75,10 +85,10 @@ Lattice with_radius_scale(const Lattice& lattice, double scale) {
 }
 
 RadiusScaledVolume::RadiusScaledVolume(const Lattice& lattice, const HubPropertiesOptions& hub)
-    : model_(std::make_unique<Model>()) {
+    : model_(std::make_unique<Model>(lattice)) {
   Model& m = *model_;
   m.hub_options = hub;
-  Context c(lattice);
+  Context c(m.lattice);
   const LatticeDefinition& def = c.def;
   const Counts& n = def.counts;
   const double g3 = std::pow(lattice.placement().scale(), 3);
@@ -108,32 +118,90 @@ RadiusScaledVolume::RadiusScaledVolume(const Lattice& lattice, const HubProperti
     const BeamPattern& b = def.beams[p];
     const IndexRange ri = pattern_range(n.u, b.di), rj = pattern_range(n.v, b.dj), rk = pattern_range(n.w, b.dk);
     if (ri.size() == 0 || rj.size() == 0 || rk.size() == 0) continue;
-    const SimilarityTransform w_dk = c.W.power(b.dk).transform();
+    const SimilarityTransform w_dk = c.w_pow(b.dk);
     const double along_k = g3 * scale_cubed_sum(c.W, rk.lo, rk.size());
     const double along_j = scale_cubed_sum(c.V, rj.lo, rj.size());
     if (c.i_steady(b)) {
-      add_beam(p, SimilarityTransform{}, w_dk * c.V.power(b.dj).transform() * c.U.power(b.di).transform(),
+      add_beam(p, SimilarityTransform{}, w_dk * c.v_pow(b.dj) * c.u_pow(b.di),
                along_k * along_j * scale_cubed_sum(c.U, ri.lo, ri.size()));
     } else if (c.j_steady(b)) {
-      const SimilarityTransform head = w_dk * c.V.power(b.dj).transform();
+      const SimilarityTransform head = w_dk * c.v_pow(b.dj);
       for (std::int64_t i = ri.lo; i < ri.hi; ++i)
-        add_beam(p, c.U.power(static_cast<double>(i)).transform(),
-                 head * c.U.power(static_cast<double>(i + b.di)).transform(), along_k * along_j);
+        add_beam(p, c.u_pow(i),
+                 head * c.u_pow(i + b.di), along_k * along_j);
     } else {
       if (m.beams.size() + static_cast<std::size_t>(ri.size() * rj.size()) > kMaxBeamShapes)
         throw ResourceLimit("radius scaling: the lattice has more than " + std::to_string(kMaxBeamShapes) +
                             " distinct beam shapes (its W does not commute with V)");
       require_memory(static_cast<std::uint64_t>(ri.size() * rj.size()) * sizeof(BeamShape), "radius scaling");
       std::vector<SimilarityTransform> u_powers(n.u);
-      for (std::int64_t i = 0; i < n.u; ++i) u_powers[i] = c.U.power(static_cast<double>(i)).transform();
+      for (std::int64_t i = 0; i < n.u; ++i) u_powers[i] = c.u_pow(i);
       for (std::int64_t j = rj.lo; j < rj.hi; ++j) {
-        const SimilarityTransform vj = c.V.power(static_cast<double>(j)).transform();
-        const SimilarityTransform head = w_dk * c.V.power(static_cast<double>(j + b.dj)).transform();
+        const SimilarityTransform vj = c.v_pow(j);
+        const SimilarityTransform head = w_dk * c.v_pow(j + b.dj);
         for (std::int64_t i = ri.lo; i < ri.hi; ++i) add_beam(p, vj * u_powers[i], head * u_powers[i + b.di], along_k);
       }
     }
   }
-  // hub classes whose caps may overlap at some scale, as in lattice_properties
+  // one full hub per node and per index of a direction along which its hubs are not similar copies
+  struct FullJob {
+    int node;
+    std::int64_t i, j;
+    bool i_steady, j_steady;
+  };
+  std::vector<FullJob> full_jobs;
+  for (int node = 0; node < static_cast<int>(def.nodes.size()); ++node) {
+    const std::vector<Incidence> all = incidences(c, node);
+    if (all.size() < 2) continue;
+    bool i_steady = true, j_steady = true;
+    for (const Incidence& s : all) {
+      i_steady = i_steady && c.i_steady(def.beams[s.pattern]);
+      j_steady = j_steady && c.j_steady(def.beams[s.pattern]);
+    }
+    i_steady = i_steady && j_steady;
+    for (std::int64_t i = 0; i < (i_steady ? 1 : n.u); ++i)
+      for (std::int64_t j = 0; j < (j_steady ? 1 : n.v); ++j) full_jobs.push_back({node, i, j, i_steady, j_steady});
+  }
+  m.full_hubs.resize(full_jobs.size());
+  tbb::parallel_for(std::size_t(0), full_jobs.size(), [&](std::size_t q) {
+    const FullJob& job = full_jobs[q];
+    const std::vector<Incidence> all = incidences(c, job.node);
+    std::vector<SimilarityTransform> other;
+    for (const Incidence& s : all)
+      other.push_back(c.w_pow(s.dk) * (job.j_steady ? c.v_pow(s.dj) : c.v_pow(job.j + s.dj)) *
+                      (job.i_steady ? c.u_pow(s.di) : c.u_pow(job.i + s.di)));
+    SimilarityTransform base;
+    if (!job.i_steady) base = c.u_pow(job.i);
+    if (!job.j_steady) base = c.v_pow(job.j) * base;
+    m.full_hubs[q] = hub_shape_at(c, job.node, base, all, other);
+  });
+  // omitted nodes: the beams they kill, and the hubs around them (actual minus generic)
+  std::set<std::tuple<std::int64_t, std::int64_t, std::int64_t, int>> killed;
+  for (const auto& [i, j, k, node] : gone)
+    for (const Incidence& s : incidences(c, node)) {
+      if (!in_lattice(i, s.di, n.u) || !in_lattice(j, s.dj, n.v) || !in_lattice(k, s.dk, n.w)) continue;
+      const BeamPattern& b = def.beams[s.pattern];
+      killed.insert(s.at_start ? std::make_tuple(i, j, k, s.pattern)
+                               : std::make_tuple(i - b.di, j - b.dj, k - b.dk, s.pattern));
+    }
+  for (const auto& [i, j, k, p] : killed) {
+    const BeamPattern& b = def.beams[p];
+    add_beam(p, c.group(i, j, k), c.group(i + b.di, j + b.dj, k + b.dk), -g3);
+  }
+}
+
+void RadiusScaledVolume::Model::build_hub_classes() const {
+  Context c(lattice);
+  const LatticeDefinition& def = c.def;
+  const Counts& n = def.counts;
+  const double g3 = std::pow(lattice.placement().scale(), 3);
+  // hub classes, as in lattice_properties (built in parallel)
+  struct ClassJob {
+    int node;
+    IndexClass xi, xj, xk;
+    bool i_steady, j_steady;
+  };
+  std::vector<ClassJob> jobs;
   for (int node = 0; node < static_cast<int>(def.nodes.size()); ++node) {
     const std::vector<Incidence> all = incidences(c, node);
     if (all.size() < 2) continue;
@@ -149,46 +217,44 @@ RadiusScaledVolume::RadiusScaledVolume(const Lattice& lattice, const HubProperti
     i_steady = i_steady && j_steady;
     for (const IndexClass& xi : index_classes(n.u, reach_i, i_steady))
       for (const IndexClass& xj : index_classes(n.v, reach_j, j_steady))
-        for (const IndexClass& xk : index_classes(n.w, reach_k, true)) {
-          std::vector<Incidence> present;
-          std::vector<SimilarityTransform> other;
-          for (const Incidence& s : all)
-            if (in_lattice(xi.first, s.di, n.u) && in_lattice(xj.first, s.dj, n.v) && in_lattice(xk.first, s.dk, n.w))
-              present.push_back(s);
-          if (present.size() < 2) continue;
-          for (const Incidence& s : present) {
-            SimilarityTransform t = c.W.power(s.dk).transform();
-            t = t * (j_steady ? c.V.power(s.dj) : c.V.power(static_cast<double>(xj.first + s.dj))).transform();
-            t = t * (i_steady ? c.U.power(s.di) : c.U.power(static_cast<double>(xi.first + s.di))).transform();
-            other.push_back(t);
-          }
-          SimilarityTransform base;
-          if (!i_steady) base = c.U.power(static_cast<double>(xi.first)).transform();
-          if (!j_steady) base = c.V.power(static_cast<double>(xj.first)).transform() * base;
-          double weight = g3 * scale_cubed_sum(c.W, xk.first, xk.count);
-          if (i_steady) weight *= scale_cubed_sum(c.U, xi.first, xi.count);
-          if (j_steady) weight *= scale_cubed_sum(c.V, xj.first, xj.count);
-          m.hubs.push_back({hub_shape_at(c, node, base, present, other), weight});
-        }
+        for (const IndexClass& xk : index_classes(n.w, reach_k, true)) jobs.push_back({node, xi, xj, xk, i_steady, j_steady});
   }
-  // omitted nodes: the beams they kill, and the hubs around them (actual minus generic)
-  std::set<std::tuple<std::int64_t, std::int64_t, std::int64_t, int>> killed, touched(gone.begin(), gone.end());
-  for (const auto& [i, j, k, node] : gone)
-    for (const Incidence& s : incidences(c, node)) {
-      if (!in_lattice(i, s.di, n.u) || !in_lattice(j, s.dj, n.v) || !in_lattice(k, s.dk, n.w)) continue;
+  std::vector<HubClass> classes(jobs.size());
+  tbb::parallel_for(std::size_t(0), jobs.size(), [&](std::size_t q) {
+    const ClassJob& job = jobs[q];
+    std::vector<Incidence> present;
+    std::vector<SimilarityTransform> other;
+    for (const Incidence& s : incidences(c, job.node))
+      if (in_lattice(job.xi.first, s.di, n.u) && in_lattice(job.xj.first, s.dj, n.v) && in_lattice(job.xk.first, s.dk, n.w))
+        present.push_back(s);
+    if (present.size() < 2) return;
+    for (const Incidence& s : present)
+      other.push_back(c.w_pow(s.dk) * (job.j_steady ? c.v_pow(s.dj) : c.v_pow(job.xj.first + s.dj)) *
+                      (job.i_steady ? c.u_pow(s.di) : c.u_pow(job.xi.first + s.di)));
+    SimilarityTransform base;
+    if (!job.i_steady) base = c.u_pow(job.xi.first);
+    if (!job.j_steady) base = c.v_pow(job.xj.first) * base;
+    double weight = g3 * scale_cubed_sum(c.W, job.xk.first, job.xk.count);
+    if (job.i_steady) weight *= scale_cubed_sum(c.U, job.xi.first, job.xi.count);
+    if (job.j_steady) weight *= scale_cubed_sum(c.V, job.xj.first, job.xj.count);
+    classes[q] = {hub_shape_at(c, job.node, base, present, other), weight};
+  });
+  for (HubClass& h : classes)
+    if (h.shape.stumps.size() >= 2) hubs.push_back(std::move(h));
+  // the hubs around omitted nodes: actual minus generic
+  std::set<std::tuple<std::int64_t, std::int64_t, std::int64_t, int>> touched;
+  for (const NodeId& id : def.omitted) {
+    touched.insert({id.i, id.j, id.k, id.n});
+    for (const Incidence& s : incidences(c, id.n)) {
+      if (!in_lattice(id.i, s.di, n.u) || !in_lattice(id.j, s.dj, n.v) || !in_lattice(id.k, s.dk, n.w)) continue;
       const BeamPattern& b = def.beams[s.pattern];
-      killed.insert(s.at_start ? std::make_tuple(i, j, k, s.pattern)
-                               : std::make_tuple(i - b.di, j - b.dj, k - b.dk, s.pattern));
-      touched.insert({i + s.di, j + s.dj, k + s.dk, s.at_start ? b.to : b.from});
+      touched.insert({id.i + s.di, id.j + s.dj, id.k + s.dk, s.at_start ? b.to : b.from});
     }
-  for (const auto& [i, j, k, p] : killed) {
-    const BeamPattern& b = def.beams[p];
-    add_beam(p, c.group(i, j, k), c.group(i + b.di, j + b.dj, k + b.dk), -g3);
   }
   for (const auto& [i, j, k, node] : touched) {
     const NodeId id{i, j, k, node};
-    m.hubs.push_back({actual_hub(c, id, true), -g3});
-    if (lattice.node_exists(id)) m.hubs.push_back({actual_hub(c, id, false), g3});
+    hubs.push_back({actual_hub(c, id, true), -g3});
+    if (lattice.node_exists(id)) hubs.push_back({actual_hub(c, id, false), g3});
   }
 }
 
@@ -197,9 +263,9 @@ RadiusScaledVolume::RadiusScaledVolume(RadiusScaledVolume&&) noexcept = default;
 
 double RadiusScaledVolume::max_scale() const { return model_->max_scale; }
 std::size_t RadiusScaledVolume::beam_shapes() const { return model_->beams.size(); }
-std::size_t RadiusScaledVolume::hub_shapes() const { return model_->hubs.size(); }
+std::size_t RadiusScaledVolume::hub_shapes() const { return model_->full_hubs.size(); }
 
-double RadiusScaledVolume::operator()(double s) const {
+double RadiusScaledVolume::without_overlaps(double s) const {
   const Model& m = *model_;
   const double beams = tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, m.beams.size(), 4096), 0.0,
@@ -212,10 +278,29 @@ double RadiusScaledVolume::operator()(double s) const {
         return sum;
       },
       std::plus<double>());
+  return s * s * s * m.balls + beams;
+}
+
+bool RadiusScaledVolume::overlaps_at(double s) const {
+  const Model& m = *model_;
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, m.full_hubs.size(), 64), false,
+      [&](const tbb::blocked_range<std::size_t>& range, bool any) {
+        for (std::size_t k = range.begin(); k != range.end() && !any; ++k) any = any_stump_caps_overlap(m.full_hubs[k], s);
+        return any;
+      },
+      [](bool a, bool b) { return a || b; });
+}
+
+double RadiusScaledVolume::operator()(double s) const {
+  const Model& m = *model_;
+  if (!overlaps_at(s)) return without_overlaps(s);
+  std::call_once(m.classes_built, [&m] { m.build_hub_classes(); });
   const double hubs = tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, m.hubs.size(), 16), 0.0,
       [&](const tbb::blocked_range<std::size_t>& range, double sum) {
         for (std::size_t k = range.begin(); k != range.end(); ++k) {
+          if (!any_stump_caps_overlap(m.hubs[k].shape, s)) continue;
           HubShape h = m.hubs[k].shape;
           h.radius *= s;
           for (HubStump& st : h.stumps) {
@@ -227,7 +312,7 @@ double RadiusScaledVolume::operator()(double s) const {
         return sum;
       },
       std::plus<double>());
-  return s * s * s * m.balls + beams + hubs;
+  return without_overlaps(s) + hubs;
 }
 
 namespace {
@@ -295,45 +380,57 @@ std::string number(double v) {
 
 }  // namespace
 
-RadiusScaleSolution radius_scale_for_volume(const Lattice& lattice, double target, const RadiusScaleOptions& options) {
-  require_positive(target, "target_volume");
-  const RadiusScaledVolume volume(lattice, options.hub);
-  RadiusScaleSolution out;
-  // Solve g(x) = ln V(e^x) - ln target = 0: nearly linear (V grows like scale^2 to scale^3).
+namespace {
+
+// Solves volume(scale) = target for a monotone volume function (Brent on log volume against log scale).
+template <class Volume>
+double solve_scale(const Volume& volume, double max_scale, double target, double tolerance, int* evaluations) {
   auto g = [&](double x) { return std::log(volume(std::exp(x))) - std::log(target); };
-  const double x_max = std::log(volume.max_scale());
-  double x0 = 0.0, g0 = g(x0);
-  out.evaluations = 1;
-  if (std::isfinite(x_max) && x0 > x_max) {
-    x0 = x_max - 1e-9;
-    g0 = g(x0);
-    ++out.evaluations;
-  }
+  const double x_max = std::log(max_scale);
+  double x0 = 0.0;
+  if (std::isfinite(x_max) && x0 > x_max) x0 = x_max - 1e-9;
+  double g0 = g(x0);
+  ++*evaluations;
   // Bracket from the power-law guess, stepping out until the sign changes.
   double x1 = x0 - g0 / 2.5;
   if (std::isfinite(x_max)) x1 = std::min(x1, x_max);
   double g1 = g(x1);
-  ++out.evaluations;
+  ++*evaluations;
   double step = x1 - x0;
   while ((g0 > 0.0) == (g1 > 0.0) && g1 != 0.0) {
     if (std::isfinite(x_max) && x1 >= x_max)
       fail_input("target_volume", number(target) + " is beyond the largest volume the lattice reaches before a node "
                                                    "ball crosses a beam's mid-plane (" +
-                                      number(volume(volume.max_scale())) + " at radius scale " +
-                                      number(volume.max_scale()) + ")");
+                                      number(volume(max_scale)) + " at radius scale " + number(max_scale) + ")");
     x0 = x1;
     g0 = g1;
     step *= 2.0;
     x1 = x0 + (step == 0.0 ? (g0 > 0.0 ? -1.0 : 1.0) : step);
     if (std::isfinite(x_max)) x1 = std::min(x1, x_max);
     g1 = g(x1);
-    ++out.evaluations;
-    if (out.evaluations > 200) fail_input("target_volume", "could not be bracketed");
+    ++*evaluations;
+    if (*evaluations > 200) fail_input("target_volume", "could not be bracketed");
   }
   // |g| <= tolerance is the volume's relative tolerance; in x the same (dg/dx is 2 to 3).
-  const double x = g1 == 0.0 ? x1 : brent_root(g, x0, x1, g0, g1, 0.3 * options.relative_tolerance, &out.evaluations);
-  out.scale = std::exp(x);
-  out.volume = volume(out.scale);
+  return std::exp(g1 == 0.0 ? x1 : brent_root(g, x0, x1, g0, g1, 0.3 * tolerance, evaluations));
+}
+
+}  // namespace
+
+RadiusScaleSolution radius_scale_for_volume(const Lattice& lattice, double target, const RadiusScaleOptions& options) {
+  require_positive(target, "target_volume");
+  const RadiusScaledVolume volume(lattice, options.hub);
+  RadiusScaleSolution out;
+  // Balls and beams alone first: exact wherever no hub's stumps overlap, which is checked at the solution
+  // (once); only if some do is the search repeated with the overlap corrections (quadrature) included.
+  out.scale = solve_scale([&](double s) { return volume.without_overlaps(s); }, volume.max_scale(), target,
+                          options.relative_tolerance, &out.evaluations);
+  if (volume.overlaps_at(out.scale)) {
+    out.scale = solve_scale(volume, volume.max_scale(), target, options.relative_tolerance, &out.evaluations);
+    out.volume = volume(out.scale);
+  } else {
+    out.volume = volume.without_overlaps(out.scale);
+  }
   if (options.check_clean) {
     const CleanReport report = check_clean(with_radius_scale(lattice, out.scale), 5);
     if (report.overlap_count > 0)

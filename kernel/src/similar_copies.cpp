@@ -44,13 +44,15 @@ double geometric_sum(double log_ratio, std::int64_t count) {
 }
 
 bool exactly_commute(const Similarity& a, const Similarity& b) {
-  auto identity = [](const Similarity& s) {
-    return s.log_scale() == 0.0 && s.rotation_vector() == Vec3(0.0) && s.velocity() == Vec3(0.0);
-  };
-  auto translation = [](const Similarity& s) { return s.log_scale() == 0.0 && s.rotation_vector() == Vec3(0.0); };
-  if (identity(a) || identity(b)) return true;
-  if (translation(a) && translation(b)) return true;
-  return a.log_scale() == b.log_scale() && a.rotation_vector() == b.rotation_vector() && a.velocity() == b.velocity();
+  // The Lie bracket of the generators (sigma, omega, v): [(s1, w1, v1), (s2, w2, v2)] =
+  // (0, w1 x w2, w1 x v2 - w2 x v1 + s1 v2 - s2 v1). Zero (computed exactly zero) means the one-parameter
+  // groups commute, so every power of a commutes with every power of b up to the rounding of the powers.
+  const Vec3& w1 = a.rotation_vector();
+  const Vec3& w2 = b.rotation_vector();
+  const Vec3 rotation_part = glm::cross(w1, w2);
+  const Vec3 translation_part = glm::cross(w1, b.velocity()) - glm::cross(w2, a.velocity()) +
+                                a.log_scale() * b.velocity() - b.log_scale() * a.velocity();
+  return rotation_part == Vec3(0.0) && translation_part == Vec3(0.0);
 }
 
 }  // namespace steady

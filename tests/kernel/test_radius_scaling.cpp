@@ -71,6 +71,22 @@ TEST(RadiusScaling, ReachesTheTargetVolume) {
   }
 }
 
+TEST(RadiusScaling, ReachesTheTargetWhereStumpsOverlap) {
+  // Hull model: every hub's caps overlap, so the search must include the quadrature corrections.
+  LatticeDefinition d;
+  d.nodes = {{Vec3(0.0), 0.2}};
+  d.beams = {{0, 1, 0, 0, 0}, {0, 0, 1, 0, 0}, {0, 0, 0, 1, 0}};
+  d.counts = {3, 3, 2};
+  d.u = {Similarity::translation({1, 0, 0}) * Similarity::swirl(0.02, {0, 0, 1}, {0, 0, 0}, 1.01)};
+  d.v = {Similarity::translation({0, 1, 0})};
+  d.w = {Similarity::translation({0, 0, 1})};
+  const Lattice lat(d);
+  ASSERT_TRUE(RadiusScaledVolume(lat).overlaps_at(1.0));
+  const double target = 1.2 * lattice_properties(lat).volume;
+  const RadiusScaleSolution sol = radius_scale_for_volume(lat, target);
+  EXPECT_NEAR(lattice_properties(with_radius_scale(lat, sol.scale)).volume, target, 1e-9 * target);
+}
+
 TEST(RadiusScaling, DensityAndMassTargets) {
   const Lattice lat = graded_bcc(5);
   const double envelope = cell_envelope_volume(lat);

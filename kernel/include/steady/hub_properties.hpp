@@ -85,6 +85,11 @@ MassMoments ball_moments(double radius);
 // overlap by more than a rounding error).
 bool stump_caps_overlap(double node_radius, const HubStump& a, const HubStump& b);
 
+// Whether any two stumps of the hub overlap outside its ball: stump_caps_overlap over all pairs, faster.
+bool any_stump_caps_overlap(const HubShape& hub);
+// The same for the hub with every radius multiplied by radius_scale (lengths kept).
+bool any_stump_caps_overlap(const HubShape& hub, double radius_scale);
+
 // hub_properties minus (ball + each stump alone): zero when no caps overlap (computed without quadrature).
 MassMoments hub_overlap_correction(const HubShape& hub, const HubPropertiesOptions& options = {});
 

@@ -25,6 +25,10 @@ class RadiusScaledVolume {
   ~RadiusScaledVolume();
   RadiusScaledVolume(RadiusScaledVolume&&) noexcept;
   double operator()(double scale) const;
+  // Balls and beams only: equal to the volume wherever no hub's stumps overlap.
+  double without_overlaps(double scale) const;
+  // Whether some hub's stumps overlap (so that the overlap corrections are not zero) at this scale.
+  bool overlaps_at(double scale) const;
   // Above this scale some node ball would cross a beam's mid-plane (the lattice cannot be clean).
   double max_scale() const;
   std::size_t beam_shapes() const;

@@ -28,8 +28,9 @@ MassMoments sum_of_copies(const Similarity& step, const Vec3& origin, const Mass
 // the scalar geometric series of the papers (volume: log_ratio = 3 ln s, area: 2 ln s), stable near s = 1.
 double geometric_sum(double log_ratio, std::int64_t count);
 
-// Whether the two similarities commute exactly (both translations, one the identity, or the same
-// generator): only then are rows of inter-group beams similar copies along a second direction.
+// Whether the two similarities commute exactly: the Lie bracket of their generators is exactly zero (both
+// translations; a rotation, screw or swirl and a translation along its axis given exactly parallel; one the
+// identity; equal generators). Only then are rows of inter-group beams similar copies along a second direction.
 bool exactly_commute(const Similarity& a, const Similarity& b);
 
 }  // namespace steady
