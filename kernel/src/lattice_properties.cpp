@@ -53,6 +53,7 @@ MassMoments pattern_sum(const Context& c, int p) {
     const SimilarityTransform head = w_dk * c.v_pow(b.dj);
     std::vector<MassMoments> row(ri.size());
     tbb::parallel_for(std::int64_t(0), ri.size(), [&](std::int64_t k) {
+      c.progress->advance();
       const std::int64_t i = ri.lo + k;
       row[k] = beam_moments(c, c.u_pow(i),
                             head * c.u_pow(i + b.di), p);
@@ -65,6 +66,7 @@ MassMoments pattern_sum(const Context& c, int p) {
     for (std::int64_t i = 0; i < n.u; ++i) u_powers[i] = c.u_pow(i);
     std::vector<MassMoments> rows(rj.size());
     tbb::parallel_for(std::int64_t(0), rj.size(), [&](std::int64_t r) {
+      c.progress->advance(ri.size());
       const std::int64_t j = rj.lo + r;
       const SimilarityTransform vj = c.v_pow(j);
       const SimilarityTransform head = w_dk * c.v_pow(j + b.dj);
@@ -120,6 +122,7 @@ MassMoments hub_corrections(const Context& c) {
         for (std::size_t k = 0; k < ck.size(); ++k) jobs.push_back({a, bb, k});
     std::vector<MassMoments> parts(jobs.size());
     tbb::parallel_for(std::size_t(0), jobs.size(), [&](std::size_t q) {
+      c.progress->advance();
       const IndexClass &xi = ci[jobs[q].a], &xj = cj[jobs[q].b], &xk = ck[jobs[q].k];
       std::vector<Incidence> present;
       std::vector<SimilarityTransform> other;
@@ -240,12 +243,20 @@ LatticeProperties lattice_properties(const Lattice& lattice, const LatticeProper
   progress.check();
   Context c(lattice);
   c.hub_options = options.hub;
+  c.progress = &progress;
+  // Work units: beams of the rows enumerated, hub classes (an estimate; only the bar's pace depends on it).
+  std::int64_t work = 1;
+  for (const BeamPattern& b : lattice.definition().beams)
+    work += c.i_steady(b) ? 0 : c.j_steady(b) ? lattice.counts().u : lattice.counts().u * lattice.counts().v;
+  work += static_cast<std::int64_t>(lattice.node_count()) * 9 * lattice.counts().u;
+  progress.set_total(work);
   MassMoments total = ball_sum(c);
   for (int p = 0; p < lattice.pattern_count(); ++p) total += pattern_sum(c, p);
   total += hub_corrections(c);
   total += omission_corrections(c);
   LatticeProperties out = finish(c, total);
   out.clean_verified = verified;
+  progress.finish();
   return out;
 }
 

@@ -9,6 +9,7 @@
 #include "steady/errors.hpp"
 #include "steady/hub_properties.hpp"
 #include "steady/lattice.hpp"
+#include "steady/progress.hpp"
 #include "steady/similar_copies.hpp"
 
 namespace steady::detail {
@@ -36,6 +37,7 @@ struct Context {
   Vec3 P{0.0};  // reference point, pre-placement
   bool uv = false, uw = false, vw = false;  // pairs that commute exactly
   HubPropertiesOptions hub_options;
+  Progress* progress = &no_progress();  // advanced once per beam row and hub class
   mutable std::atomic<std::int64_t> beam_shapes{0}, hub_shapes{0}, overlapping{0};
 
   explicit Context(const Lattice& l) : lattice(l), def(l.definition()), U(l.step_u()), V(l.step_v()), W(l.step_w()) {

@@ -253,6 +253,29 @@ TEST(HubProperties, QuadratureIsStableAcrossTolerances) {
   }
 }
 
+TEST(HubProperties, FastOverlapTestAgreesWithThePairwiseOne) {
+  std::mt19937_64 rng(8);
+  int overlapping = 0;
+  for (int t = 0; t < 20000; ++t) {
+    const HubShape h = test::random_hub(rng, 2 + t % 6, t % 2 ? test::BeamModel::Hull : test::BeamModel::ExplicitRadii);
+    const double scale = 0.5 + (t % 7) * 0.1;
+    HubShape scaled = h;
+    scaled.radius *= scale;
+    for (auto& s : scaled.stumps) {
+      s.radius *= scale;
+      s.other_radius *= scale;
+    }
+    bool pairwise = false;
+    for (std::size_t a = 0; a < h.stumps.size(); ++a)
+      for (std::size_t b = a + 1; b < h.stumps.size(); ++b)
+        pairwise = pairwise || stump_caps_overlap(scaled.radius, scaled.stumps[a], scaled.stumps[b]);
+    ASSERT_EQ(any_stump_caps_overlap(h, scale), pairwise) << t;
+    overlapping += pairwise;
+  }
+  EXPECT_GT(overlapping, 1000);
+  EXPECT_LT(overlapping, 19000);
+}
+
 TEST(HubProperties, RefusesHubsOfNonCleanLattices) {
   HubShape h;
   h.radius = 1.0;

@@ -9,6 +9,7 @@
 
 #include "lattice_test_shapes.hpp"
 #include "steady/errors.hpp"
+#include "steady/similar_copies.hpp"
 #include "steady/lattice_properties.hpp"
 #include "steady/similar_copies.hpp"
 
@@ -110,6 +111,26 @@ TEST(LatticeProperties, TranslationalLatticesNeedOnlyBorderShapes) {
     EXPECT_EQ(a.hub_shapes, b.hub_shapes);
     EXPECT_GT(b.volume, 1e6 * a.volume);
   }
+}
+
+TEST(LatticeProperties, CylindricalBendsAreSteadyAlongTheAxis) {
+  // W turns the slabs about an axis along V's translation: V and W commute (their generators' Lie bracket
+  // is exactly zero), so every beam row is a similar copy along j: O(u) shapes, and the same properties.
+  LatticeDefinition d;
+  d.nodes = {{Vec3(0.0), 0.15}, {Vec3(0.5, 0.5, 0.5), 0.12}};
+  d.beams = {{0, 1, 0, 0, 0, 0.06, 0.06}, {0, 0, 1, 0, 0, 0.06, 0.06}, {0, 0, 0, 1, 0, 0.06, 0.06},
+             {0, 0, 0, 0, 1, 0.06, 0.05}, {1, 1, 1, 1, 0, 0.05, 0.06}};
+  d.counts = {4, 5, 4};
+  d.u = {Similarity::translation({1, 0, 0})};
+  d.v = {Similarity::translation({0, 1, 0})};
+  d.w = {Similarity::rotation(-0.05, {0, 1, 0}, {-20, 0, 0})};
+  const Lattice lat(d);
+  EXPECT_TRUE(exactly_commute(lat.step_v(), lat.step_w()));
+  EXPECT_FALSE(exactly_commute(lat.step_u(), lat.step_w()));
+  EXPECT_FALSE(exactly_commute(Similarity::dilation(1.1, {0, 0, 0}), lat.step_v()));
+  const LatticeProperties fast = lattice_properties(lat);
+  EXPECT_LE(fast.beam_shapes, 4 * 5 + 2 * 5);  // per pattern at most one row of u shapes (plus omissions: none)
+  EXPECT_LT(property_difference(lattice_properties_brute_force(lat), fast), 1e-12);
 }
 
 TEST(LatticeProperties, SeriesReproduceThePaperOracle) {
