@@ -1,6 +1,8 @@
 #include "steady/lattice_properties.hpp"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <atomic>
@@ -112,49 +114,48 @@ MassMoments hub_corrections(const Context& c) {
     i_steady = i_steady && j_steady;
     const auto ci = index_classes(n.u, reach_i, i_steady), cj = index_classes(n.v, reach_j, j_steady),
                ck = index_classes(n.w, reach_k, true);
-    // Every (i, j, k) class triple: its representative hub in the frame the sums start from.
-    struct Job {
-      std::size_t a, b, k;
-    };
-    std::vector<Job> jobs;
-    for (std::size_t a = 0; a < ci.size(); ++a)
-      for (std::size_t bb = 0; bb < cj.size(); ++bb)
-        for (std::size_t k = 0; k < ck.size(); ++k) jobs.push_back({a, bb, k});
-    std::vector<MassMoments> parts(jobs.size());
-    tbb::parallel_for(std::size_t(0), jobs.size(), [&](std::size_t q) {
+    // Every (i, j, k) class triple: its representative hub in the frame the sums start from. Streamed
+    // (O(uv) triples when the hub is steady along neither i nor j), reduced in a fixed order.
+    auto triple = [&](std::size_t a, std::size_t bb, std::size_t kk) -> MassMoments {
       c.progress->advance();
-      const IndexClass &xi = ci[jobs[q].a], &xj = cj[jobs[q].b], &xk = ck[jobs[q].k];
+      const IndexClass &xi = ci[a], &xj = cj[bb], &xk = ck[kk];
       std::vector<Incidence> present;
       std::vector<SimilarityTransform> other;
       // Which stumps exist is decided at the class's first index (the interior has them all).
       for (const Incidence& s : all)
         if (in_lattice(xi.first, s.di, n.u) && in_lattice(xj.first, s.dj, n.v) && in_lattice(xk.first, s.dk, n.w))
           present.push_back(s);
-      if (present.size() < 2) return;
+      if (present.size() < 2) return {};
       // The representative's frame: what the remaining sums do not place.
-      SimilarityTransform base;
       for (const Incidence& s : present) {
         SimilarityTransform t;
         if (i_steady) {
           t = c.w_pow(s.dk) * c.v_pow(s.dj) * c.u_pow(s.di);
         } else if (j_steady) {
-          t = c.w_pow(s.dk) * c.v_pow(s.dj) *
-              c.u_pow(xi.first + s.di);
+          t = c.w_pow(s.dk) * c.v_pow(s.dj) * c.u_pow(xi.first + s.di);
         } else {
-          t = c.w_pow(s.dk) * c.v_pow(xj.first + s.dj) *
-              c.u_pow(xi.first + s.di);
+          t = c.w_pow(s.dk) * c.v_pow(xj.first + s.dj) * c.u_pow(xi.first + s.di);
         }
         other.push_back(t);
       }
+      SimilarityTransform base;
       if (!i_steady) base = c.u_pow(xi.first);
       if (!j_steady) base = c.v_pow(xj.first) * base;
       MassMoments m = correction_about_P(c, hub_shape_at(c, node, base, present, other));
-      if (m.volume == 0.0 && m.area == 0.0) return;
+      if (m.volume == 0.0 && m.area == 0.0) return {};
       if (i_steady) m = class_sum(c.U, c.P, m, xi);
       if (j_steady) m = class_sum(c.V, c.P, m, xj);
-      parts[q] = class_sum(c.W, c.P, m, xk);
-    });
-    for (const MassMoments& m : parts) total += m;
+      return class_sum(c.W, c.P, m, xk);
+    };
+    const std::size_t rows = ci.size() * cj.size();
+    total += tbb::parallel_deterministic_reduce(
+        tbb::blocked_range<std::size_t>(0, rows, 16), MassMoments{},
+        [&](const tbb::blocked_range<std::size_t>& range, MassMoments sum) {
+          for (std::size_t r = range.begin(); r != range.end(); ++r)
+            for (std::size_t kk = 0; kk < ck.size(); ++kk) sum += triple(r / cj.size(), r % cj.size(), kk);
+          return sum;
+        },
+        [](const MassMoments& x, const MassMoments& y) { return x + y; });
   }
   return total;
 }
@@ -263,16 +264,19 @@ LatticeProperties lattice_properties(const Lattice& lattice, const LatticeProper
 LatticeProperties lattice_properties_brute_force(const Lattice& lattice, const LatticePropertiesOptions& options) {
   Context c(lattice);
   const Vec3 reference = lattice.placement().apply_point(c.P);
-  std::vector<MassMoments> parts(lattice.ball_count());
   std::atomic<std::int64_t> overlapping{0};
-  tbb::parallel_for(std::int64_t(0), lattice.ball_count(), [&](std::int64_t index) {
-    const Hub h = hub(lattice, lattice.ball_id(index));
-    const HubProperties p = hub_properties(hub_shape(h), options.hub);
-    overlapping += !p.closed_form;
-    parts[index] = shifted(p.moments, h.ball.center - reference);
-  });
-  MassMoments total;
-  for (const MassMoments& m : parts) total += m;
+  const MassMoments total = tbb::parallel_deterministic_reduce(
+      tbb::blocked_range<std::int64_t>(0, lattice.ball_count(), 256), MassMoments{},
+      [&](const tbb::blocked_range<std::int64_t>& range, MassMoments sum) {
+        for (std::int64_t index = range.begin(); index != range.end(); ++index) {
+          const Hub h = hub(lattice, lattice.ball_id(index));
+          const HubProperties p = hub_properties(hub_shape(h), options.hub);
+          overlapping += !p.closed_form;
+          sum += shifted(p.moments, h.ball.center - reference);
+        }
+        return sum;
+      },
+      [](const MassMoments& x, const MassMoments& y) { return x + y; });
   LatticeProperties out = properties_from_moments(total, reference);
   out.hub_shapes = lattice.ball_count();
   out.overlapping_hub_shapes = overlapping;

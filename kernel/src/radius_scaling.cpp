@@ -159,6 +159,10 @@ RadiusScaledVolume::RadiusScaledVolume(const Lattice& lattice, const HubProperti
       j_steady = j_steady && c.j_steady(def.beams[s.pattern]);
     }
     i_steady = i_steady && j_steady;
+    const std::int64_t count = (i_steady ? 1 : n.u) * (j_steady ? 1 : n.v);
+    if (full_jobs.size() + static_cast<std::size_t>(count) > kMaxBeamShapes)
+      throw ResourceLimit("radius scaling: the lattice has more than " + std::to_string(kMaxBeamShapes) +
+                          " distinct hub shapes (its W does not commute with V)");
     for (std::int64_t i = 0; i < (i_steady ? 1 : n.u); ++i)
       for (std::int64_t j = 0; j < (j_steady ? 1 : n.v); ++j) full_jobs.push_back({node, i, j, i_steady, j_steady});
   }
