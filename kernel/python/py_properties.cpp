@@ -5,7 +5,7 @@
 #include <pybind11/stl.h>
 
 #include "convert.hpp"
-#include "steady/clean_check.hpp"
+#include "steady/hub_overlaps.hpp"
 #include "steady/lattice_properties.hpp"
 #include "steady/radius_scaling.hpp"
 
@@ -102,10 +102,10 @@ check and returns the sum over hubs). Multiply volume and inertia by a density f
           },
           "The same properties summed over every hub (slow: for checks).")
       .def(
-          "clean_report",
+          "hub_overlap_report",
           [](const Lattice& lat, std::size_t max_reports, const py::object& progress) {
-            const steady::CleanReport r = with_progress(
-                progress, [&](steady::Progress& p) { return steady::check_clean(lat, max_reports, p); });
+            const steady::HubOverlapReport r = with_progress(
+                progress, [&](steady::Progress& p) { return steady::check_hub_overlaps(lat, max_reports, p); });
             py::list overlaps;
             for (const steady::HubOverlap& o : r.overlaps)
               overlaps.append(py::make_tuple(node_tuple(o.a), node_tuple(o.b), o.detail));

@@ -11,7 +11,7 @@
 #include <string>
 #include <tuple>
 
-#include "steady/clean_check.hpp"
+#include "steady/hub_overlaps.hpp"
 #include "steady/errors.hpp"
 #include "steady/hub.hpp"
 #include "steady/similar_copies.hpp"
@@ -112,6 +112,29 @@ MassMoments hub_corrections(const Context& c) {
       reach_k = std::max(reach_k, std::abs(s.dk));
     }
     i_steady = i_steady && j_steady;
+    // Every hub of this node is, up to a similarity, a subset of its full hub (all stumps, neighbours outside
+    // the lattice included) at the same non-steady indices: when none of those has overlapping caps, every
+    // correction of the node is zero and its classes need not be built.
+    const std::int64_t full_count = (i_steady ? 1 : n.u) * (j_steady ? 1 : n.v);
+    const bool may_overlap = tbb::parallel_reduce(
+        tbb::blocked_range<std::int64_t>(0, full_count, 64), false,
+        [&](const tbb::blocked_range<std::int64_t>& range, bool any) {
+          for (std::int64_t q = range.begin(); q != range.end() && !any; ++q) {
+            const std::int64_t i = i_steady ? 0 : q % n.u, j = j_steady ? 0 : q / (i_steady ? 1 : n.u);
+            std::vector<SimilarityTransform> other;
+            for (const Incidence& s : all)
+              other.push_back(c.w_pow(s.dk) * (j_steady ? c.v_pow(s.dj) : c.v_pow(j + s.dj)) *
+                              (i_steady ? c.u_pow(s.di) : c.u_pow(i + s.di)));
+            SimilarityTransform base;
+            if (!i_steady) base = c.u_pow(i);
+            if (!j_steady) base = c.v_pow(j) * base;
+            ++c.hub_shapes;
+            any = any_stump_caps_overlap(hub_shape_at(c, node, base, all, other));
+          }
+          return any;
+        },
+        [](bool a, bool b) { return a || b; });
+    if (!may_overlap) continue;
     const auto ci = index_classes(n.u, reach_i, i_steady), cj = index_classes(n.v, reach_j, j_steady),
                ck = index_classes(n.w, reach_k, true);
     // Every (i, j, k) class triple: its representative hub in the frame the sums start from. Streamed
@@ -234,7 +257,7 @@ LatticeProperties lattice_properties(const Lattice& lattice, const LatticeProper
                                      Progress& progress) {
   bool verified = false;
   if (options.check_clean) {
-    const CleanReport report = check_clean(lattice, 10, progress);
+    const HubOverlapReport report = check_hub_overlaps(lattice, 10, progress);
     if (report.overlap_count > 0)
       fail_input("lattice", "not clean, " + report.describe() +
                                 ". Its properties are not the sum of its hubs', and the union of overlapping hubs is "

@@ -13,7 +13,7 @@
 #include <tuple>
 
 #include "lattice_sums.hpp"
-#include "steady/clean_check.hpp"
+#include "steady/hub_overlaps.hpp"
 #include "steady/memory_budget.hpp"
 
 namespace steady {
@@ -436,7 +436,7 @@ RadiusScaleSolution radius_scale_for_volume(const Lattice& lattice, double targe
     out.volume = volume.without_overlaps(out.scale);
   }
   if (options.check_clean) {
-    const CleanReport report = check_clean(with_radius_scale(lattice, out.scale), 5);
+    const HubOverlapReport report = check_hub_overlaps(with_radius_scale(lattice, out.scale), 5);
     if (report.overlap_count > 0)
       fail_input("target_volume", number(target) + " needs radius scale " + number(out.scale) +
                                       ", where the lattice is not clean: " + report.describe(3));

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "bench_common.hpp"
-#include "steady/clean_check.hpp"
+#include "steady/hub_overlaps.hpp"
 #include "steady/lattice_properties.hpp"
 #include "steady/radius_scaling.hpp"
 
@@ -152,8 +152,8 @@ void density_targeting() {
       }
       naive_scale = 0.5 * (lo + hi);
     });
-    CleanReport report;
-    const double t_clean = bench::median_seconds(1, [&] { report = check_clean(with_radius_scale(lat, sol.scale)); });
+    HubOverlapReport report;
+    const double t_clean = bench::median_seconds(1, [&] { report = check_hub_overlaps(with_radius_scale(lat, sol.scale)); });
     std::printf("%-12s %12.5f %12d %14.2e %14.4f %9.0fx %12.2f %14s\n", name(kind), t_model, sol.evaluations,
                 std::abs(achieved - target) / target, t_naive, t_naive / t_model, t_clean,
                 report.clean() ? "clean" : (report.verified ? "NOT clean" : "unverified"));

@@ -7,7 +7,7 @@
 
 #include "hub_test_shapes.hpp"
 #include "occ_reference.hpp"
-#include "steady/clean_check.hpp"
+#include "steady/hub_overlaps.hpp"
 #include "steady/lattice_properties.hpp"
 
 namespace steady {
@@ -73,7 +73,7 @@ TEST(PropertiesOcc, SmallLatticesMatchBRepGProp) {
     d.placement = Similarity::rotation(0.4, {1, 2, 3}, {1, 0, 0});
     if (cs.omit) d.omitted = {{1, 0, 1, 1}};
     const Lattice lat(d);
-    ASSERT_TRUE(check_clean(lat).clean());
+    ASSERT_TRUE(check_hub_overlaps(lat).clean());
     std::vector<TopoDS_Shape> pieces;
     lat.for_each_ball([&](std::int64_t, const NodeId&, const Ball& b) {
       pieces.push_back(BRepPrimAPI_MakeSphere(test::occ_point(b.center), b.radius).Shape());

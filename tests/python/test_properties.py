@@ -66,7 +66,7 @@ def test_non_clean_lattice_is_reported_and_refused():
     t = sl.Similarity.translation
     lat = sl.Lattice([((0, 0, 0), 0.4), ((0.5, 0.5, 0), 0.4)], [(0, 1, 0, 0, 0, 0.1, 0.1), (1, 1, 0, 0, 1, 0.1, 0.1)],
                      (3, 2, 1), t((1, 0, 0)), t((0, 1, 0)), t((0, 0, 1)))
-    report = lat.clean_report()
+    report = lat.hub_overlap_report()
     assert report["verified"] and not report["clean"] and report["overlap_count"] > 0
     a, b, pieces = report["overlaps"][0]
     assert len(a) == 4 and len(b) == 4 and isinstance(pieces, str)
@@ -114,5 +114,5 @@ def test_progress_can_cancel_the_clean_check():
 
     lat = graded_bcc(30)
     with pytest.raises(sl.Cancelled):
-        lat.clean_report(progress=report)
+        lat.hub_overlap_report(progress=report)
     assert calls

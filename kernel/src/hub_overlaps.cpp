@@ -1,4 +1,4 @@
-#include "steady/clean_check.hpp"
+#include "steady/hub_overlaps.hpp"
 
 #include <tbb/parallel_for.h>
 
@@ -115,7 +115,7 @@ bool hubs_overlap(const HubPieces& x, const HubPieces& y, std::string* detail) {
 
 struct Collector {
   std::mutex lock;
-  CleanReport* report;
+  HubOverlapReport* report;
   std::size_t max_reports;
   void add(const NodeId& a, const NodeId& b, std::string detail, std::int64_t multiplicity) {
     std::lock_guard<std::mutex> guard(lock);
@@ -129,7 +129,7 @@ bool before(const NodeId& a, const NodeId& b) {
   return std::tie(a.k, a.j, a.i, a.n) < std::tie(b.k, b.j, b.i, b.n);
 }
 
-void finish(CleanReport& report, std::size_t max_reports) {
+void finish(HubOverlapReport& report, std::size_t max_reports) {
   for (HubOverlap& o : report.overlaps)
     if (before(o.b, o.a)) std::swap(o.a, o.b);
   std::sort(report.overlaps.begin(), report.overlaps.end(), [](const HubOverlap& x, const HubOverlap& y) {
@@ -211,7 +211,7 @@ std::string to_string(const NodeId& id) {
   return os.str();
 }
 
-std::string CleanReport::describe(std::size_t max_listed) const {
+std::string HubOverlapReport::describe(std::size_t max_listed) const {
   std::ostringstream os;
   if (!verified) os << "not verified (the lattice is too large to check); ";
   if (overlap_count == 0) {
@@ -227,12 +227,12 @@ std::string CleanReport::describe(std::size_t max_listed) const {
   return os.str();
 }
 
-CleanReport check_clean(const Lattice& lattice, std::size_t max_reports, Progress& progress, CleanCheckMethod method) {
-  CleanReport report;
+HubOverlapReport check_hub_overlaps(const Lattice& lattice, std::size_t max_reports, Progress& progress, HubOverlapCheckMethod method) {
+  HubOverlapReport report;
   Collector out{{}, &report, max_reports};
   const std::int64_t count = lattice.ball_count();
-  const bool all_hubs = method == CleanCheckMethod::AllHubs ||
-                        (method == CleanCheckMethod::Automatic && count <= kDirectCleanCheckHubs);
+  const bool all_hubs = method == HubOverlapCheckMethod::AllHubs ||
+                        (method == HubOverlapCheckMethod::Automatic && count <= kDirectHubOverlapCheckHubs);
   if (all_hubs) {
     require_memory(static_cast<std::uint64_t>(count) * bytes_per_hub(lattice), "clean check");
     progress.set_total(count);
@@ -291,7 +291,7 @@ CleanReport check_clean(const Lattice& lattice, std::size_t max_reports, Progres
   const std::int64_t per_slab = static_cast<std::int64_t>(rep_slab.size());
   const std::int64_t work = 2 * per_slab * static_cast<std::int64_t>(pairs.size());
   report.hubs_checked = work;
-  if (work > kMaxCleanCheckHubs) {
+  if (work > kMaxHubOverlapCheckHubs) {
     finish(report, max_reports);
     return report;  // not verified
   }
@@ -318,8 +318,8 @@ CleanReport check_clean(const Lattice& lattice, std::size_t max_reports, Progres
   return report;
 }
 
-CleanReport check_clean_brute_force(const Lattice& lattice, std::size_t max_reports) {
-  CleanReport report;
+HubOverlapReport check_hub_overlaps_brute_force(const Lattice& lattice, std::size_t max_reports) {
+  HubOverlapReport report;
   std::vector<HubPieces> hubs;
   for (std::int64_t k = 0; k < lattice.ball_count(); ++k) hubs.push_back(hub_pieces(lattice, lattice.ball_id(k)));
   for (std::size_t a = 0; a < hubs.size(); ++a)

@@ -5,7 +5,7 @@
 #include <random>
 
 #include "lattice_test_shapes.hpp"
-#include "steady/clean_check.hpp"
+#include "steady/hub_overlaps.hpp"
 #include "hub_test_shapes.hpp"
 #include "steady/errors.hpp"
 #include "steady/hub.hpp"
@@ -26,7 +26,7 @@ Lattice bent_bcc(double bend, double scale, Counts counts) {
   return Lattice(d);
 }
 
-TEST(CleanCheck, MatchesBruteForceOnRandomLattices) {
+TEST(HubOverlaps, MatchesBruteForceOnRandomLattices) {
   std::mt19937_64 rng(99);
   int dirty = 0;
   for (int trial = 0; trial < 20; ++trial) {
@@ -37,7 +37,7 @@ TEST(CleanCheck, MatchesBruteForceOnRandomLattices) {
     o.hull_model = trial % 4 == 1;
     o.omitted = trial % 3 == 2 ? 2 : 0;
     const Lattice lat = test::random_lattice(rng, o, Counts{3, 2 + trial % 2, 3});
-    const CleanReport fast = check_clean(lat), brute = check_clean_brute_force(lat);
+    const HubOverlapReport fast = check_hub_overlaps(lat), brute = check_hub_overlaps_brute_force(lat);
     ASSERT_TRUE(fast.verified);
     EXPECT_EQ(fast.overlap_count, brute.overlap_count) << "trial " << trial;
     ASSERT_EQ(fast.overlaps.size(), brute.overlaps.size());
@@ -51,7 +51,7 @@ TEST(CleanCheck, MatchesBruteForceOnRandomLattices) {
   EXPECT_LT(dirty, 20);
 }
 
-TEST(CleanCheck, AgreesWithMonteCarloPointMembership) {
+TEST(HubOverlaps, AgreesWithMonteCarloPointMembership) {
   // Independent of the distance computation: points found inside two hubs (by the definition of a hub)
   // prove an overlap, which the check must report; and most reported pairs must show such points.
   std::mt19937_64 rng(4);
@@ -63,7 +63,7 @@ TEST(CleanCheck, AgreesWithMonteCarloPointMembership) {
     o.patterns = 4 + trial % 3;
     o.hull_model = trial % 3 == 0;
     const Lattice lat = test::random_lattice(rng, o, Counts{2, 2, 2});
-    const CleanReport report = check_clean(lat, 100000);
+    const HubOverlapReport report = check_hub_overlaps(lat, 100000);
     std::vector<HubShape> hubs;
     for (std::int64_t k = 0; k < lat.ball_count(); ++k) hubs.push_back(hub_shape(hub(lat, lat.ball_id(k))));
     for (std::size_t a = 0; a < hubs.size(); ++a)
@@ -91,7 +91,7 @@ TEST(CleanCheck, AgreesWithMonteCarloPointMembership) {
   EXPECT_GE(confirmed, reported * 8 / 10);
 }
 
-TEST(CleanCheck, SlabWindowCountsLikeTheAllHubsCheck) {
+TEST(HubOverlaps, SlabWindowCountsLikeTheAllHubsCheck) {
   std::mt19937_64 rng(7);
   for (int trial = 0; trial < 12; ++trial) {
     test::LatticeOptions o;
@@ -100,18 +100,18 @@ TEST(CleanCheck, SlabWindowCountsLikeTheAllHubsCheck) {
     o.patterns = 3 + trial % 4;
     o.max_offset = trial % 3 == 2 ? 2 : 1;
     const Lattice lat = test::random_lattice(rng, o, Counts{3, 2, 7 + trial % 3});
-    const CleanReport all = check_clean(lat, 1000, no_progress(), CleanCheckMethod::AllHubs);
-    const CleanReport window = check_clean(lat, 1000, no_progress(), CleanCheckMethod::SlabWindow);
+    const HubOverlapReport all = check_hub_overlaps(lat, 1000, no_progress(), HubOverlapCheckMethod::AllHubs);
+    const HubOverlapReport window = check_hub_overlaps(lat, 1000, no_progress(), HubOverlapCheckMethod::SlabWindow);
     ASSERT_TRUE(window.verified);
     EXPECT_EQ(all.overlap_count, window.overlap_count) << "trial " << trial;
   }
   // a bent lattice that overlaps in every slab
   const Lattice dirty = bent_bcc(0.08, 1.05, Counts{3, 2, 9});
-  EXPECT_EQ(check_clean(dirty, 10, no_progress(), CleanCheckMethod::SlabWindow).overlap_count,
-            check_clean(dirty, 10, no_progress(), CleanCheckMethod::AllHubs).overlap_count);
+  EXPECT_EQ(check_hub_overlaps(dirty, 10, no_progress(), HubOverlapCheckMethod::SlabWindow).overlap_count,
+            check_hub_overlaps(dirty, 10, no_progress(), HubOverlapCheckMethod::AllHubs).overlap_count);
 }
 
-TEST(CleanCheck, TouchingIsNotOverlapping) {
+TEST(HubOverlaps, TouchingIsNotOverlapping) {
   // Balls of radius exactly half the beam length touch at the mid-plane: clean. A hair more: not clean.
   for (double radius : {0.5, 0.5 * (1 + 1e-6)}) {
     LatticeDefinition d;
@@ -120,11 +120,11 @@ TEST(CleanCheck, TouchingIsNotOverlapping) {
     d.counts = {3, 1, 1};
     d.u = {Similarity::translation({1, 0, 0})};
     const Lattice lat(d);
-    EXPECT_EQ(check_clean(lat).clean(), radius == 0.5) << radius;
+    EXPECT_EQ(check_hub_overlaps(lat).clean(), radius == 0.5) << radius;
   }
 }
 
-TEST(CleanCheck, PropertiesRefuseNonCleanLatticesNamingTheHubs) {
+TEST(HubOverlaps, PropertiesRefuseNonCleanLatticesNamingTheHubs) {
   const Lattice dirty = bent_bcc(0.08, 1.05, Counts{2, 2, 2});
   try {
     lattice_properties(dirty);
