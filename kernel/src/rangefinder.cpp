@@ -6,13 +6,16 @@
 
 #include "steady/interference.hpp"
 #include "steady/query_tolerance.hpp"
-#include "steady/tolerance.hpp"
 
 namespace steady {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kTwoPi = 6.283185307179586476925286766559;
+
+// A shape whose distance to the rotation axis is below its radius times (1 + this) counts as meeting the
+// axis: closer, asin(r / rho) would lose more than kRangeAngleSlack.
+constexpr double kAxisContactMargin = 1e-14;
 
 // Widens an extent by an absolute slack plus the relative slack of its own values.
 Extent widened(Extent e, double absolute) {
@@ -32,6 +35,50 @@ std::int64_t clamped_floor(double x, std::int64_t lo, std::int64_t hi) {
   if (!(x < static_cast<double>(hi))) return hi;  // also NaN
   if (x < static_cast<double>(lo)) return lo - 1;
   return std::min(hi, static_cast<std::int64_t>(std::floor(x)));
+}
+
+// A unit vector orthogonal to `a`: the cross product with the basis vector least aligned with it.
+Vec3 orthogonal_unit(const Vec3& a) {
+  const Vec3 abs_a(std::abs(a.x), std::abs(a.y), std::abs(a.z));
+  Vec3 e(0.0);
+  e[abs_a.x <= abs_a.y && abs_a.x <= abs_a.z ? 0 : (abs_a.y <= abs_a.z ? 1 : 2)] = 1.0;
+  return glm::normalize(glm::cross(a, e));
+}
+
+// The component of x - point orthogonal to the unit axis.
+Vec3 radial(const Vec3& x, const Vec3& point, const Vec3& axis) {
+  const Vec3 w = x - point;
+  return w - glm::dot(w, axis) * axis;
+}
+
+// Extent of a ball under ln(distance)/step, given its center's distance; the fixed set (F or the line)
+// maps to -inf for step > 0 and +inf for step < 0.
+Extent log_distance_extent(double distance, double radius, double step) {
+  const double far = std::log(distance + radius) / step;
+  Extent e;
+  if (distance <= radius) {
+    e = step > 0.0 ? Extent{-kInf, far, false} : Extent{far, kInf, false};
+  } else {
+    const double near = std::log(distance - radius) / step;
+    e = {std::min(near, far), std::max(near, far), false};
+  }
+  return widened(e, kRangeLogSlack / std::abs(step));
+}
+
+// Adds ln(nearest distance)/step of a beam (the nearest point may lie on its cone) to the balls' extent.
+Extent with_nearest(Extent e, double nearest, double step) {
+  if (nearest <= 0.0) {
+    if (step > 0.0)
+      e.lo = -kInf;
+    else
+      e.hi = kInf;
+    return e;
+  }
+  const double m = std::log(nearest) / step;
+  const double slack = kRangeLogSlack / std::abs(step) + kRangeRelativeSlack * std::abs(m);
+  e.lo = std::min(e.lo, m - slack);
+  e.hi = std::max(e.hi, m + slack);
+  return e;
 }
 
 }  // namespace
@@ -84,6 +131,124 @@ IndexRange IndexRanges::hull() const {
   return h;
 }
 
+// --- NormalizedMap -----------------------------------------------------------------------------------
+
+NormalizedMap NormalizedMap::translation(const Vec3& point, const Vec3& unit_axis, double distance) {
+  NormalizedMap m;
+  m.type = Type::Translation;
+  m.point = point;
+  m.axis = unit_axis;
+  m.step = distance;
+  return m;
+}
+
+NormalizedMap NormalizedMap::dilation(const Vec3& fixed_point, double log_scale) {
+  NormalizedMap m;
+  m.type = Type::Dilation;
+  m.point = fixed_point;
+  m.step = log_scale;
+  return m;
+}
+
+NormalizedMap NormalizedMap::axis_dilation(const Vec3& point, const Vec3& unit_axis, double log_scale) {
+  NormalizedMap m;
+  m.type = Type::AxisDilation;
+  m.point = point;
+  m.axis = unit_axis;
+  m.step = log_scale;
+  return m;
+}
+
+NormalizedMap NormalizedMap::rotation(const Vec3& point, const Vec3& unit_axis, double angle) {
+  NormalizedMap m;
+  m.type = Type::Rotation;
+  m.point = point;
+  m.axis = unit_axis;
+  m.step = angle;
+  m.reference = orthogonal_unit(unit_axis);
+  m.binormal = glm::cross(unit_axis, m.reference);
+  return m;
+}
+
+double NormalizedMap::period() const { return kTwoPi / step; }
+
+double NormalizedMap::value(const Vec3& x, int branch) const {
+  switch (type) {
+    case Type::Translation: return glm::dot(x - point, axis) / step;
+    case Type::Dilation:
+    case Type::AxisDilation: {
+      const double r = type == Type::Dilation ? glm::length(x - point) : glm::length(radial(x, point, axis));
+      if (r == 0.0) return step > 0.0 ? -kInf : kInf;
+      return std::log(r) / step;
+    }
+    case Type::Rotation: {
+      const Vec3 w = x - point;
+      const double px = glm::dot(w, reference), py = glm::dot(w, binormal);
+      if (px == 0.0 && py == 0.0) return std::numeric_limits<double>::quiet_NaN();
+      return std::atan2(py, px) / step + branch * period();
+    }
+  }
+  return 0.0;
+}
+
+Extent NormalizedMap::extent(const Ball& ball) const {
+  switch (type) {
+    case Type::Translation: {
+      const double c = value(ball.center), h = ball.radius / std::abs(step);
+      return widened({c - h, c + h, false}, 0.0);
+    }
+    case Type::Dilation: return log_distance_extent(glm::length(ball.center - point), ball.radius, step);
+    case Type::AxisDilation:
+      return log_distance_extent(glm::length(radial(ball.center, point, axis)), ball.radius, step);
+    case Type::Rotation: {
+      const Vec3 w = ball.center - point;
+      const double px = glm::dot(w, reference), py = glm::dot(w, binormal);
+      const double rho = std::hypot(px, py);
+      if (rho <= ball.radius * (1.0 + kAxisContactMargin) || rho == 0.0) return {0.0, 0.0, true};
+      const double c = std::atan2(py, px) / step;
+      const double h = std::asin(std::min(1.0, ball.radius / rho)) / step;
+      return widened({c - h, c + h, false}, kRangeAngleSlack / step);
+    }
+  }
+  return {};
+}
+
+Extent NormalizedMap::extent(const Ball& a, const Ball& b) const {
+  const Extent ea = extent(a), eb = extent(b);
+  switch (type) {
+    case Type::Translation:
+      // The extreme points of the hull along the axis lie in one of its balls.
+      return {std::min(ea.lo, eb.lo), std::max(ea.hi, eb.hi), false};
+    case Type::Dilation:
+      // The farthest point from F lies in a ball; the nearest may lie on the cone.
+      return with_nearest({std::min(ea.lo, eb.lo), std::max(ea.hi, eb.hi), false}, distance_to_hull(point, a, b),
+                          step);
+    case Type::AxisDilation: {
+      // Distance to the line is the distance, in the plane orthogonal to it, to the hull's shadow: the
+      // 2D hull of the two disks. Farthest again in a ball, nearest possibly on the cone.
+      const Vec3 pa = point + radial(a.center, point, axis), pb = point + radial(b.center, point, axis);
+      const double nearest = distance_to_hull(point, {pa, a.radius}, {pb, b.radius});
+      return with_nearest({std::min(ea.lo, eb.lo), std::max(ea.hi, eb.hi), false}, nearest, step);
+    }
+    case Type::Rotation: {
+      // The axis meets the beam exactly when the beam's shadow along the axis contains the axis point.
+      const Vec3 ra = radial(a.center, point, axis), rb = radial(b.center, point, axis);
+      const double gap = distance_to_hull(point, {point + ra, a.radius}, {point + rb, b.radius});
+      const double scale = glm::length(ra) + glm::length(rb) + a.radius + b.radius;
+      if (gap <= kAxisContactMargin * scale || ea.full || eb.full) return {0.0, 0.0, true};
+      // b's center mapped relative to a's (the paper's "proper mapping"): both ends in one lift. The
+      // shadow does not contain the axis, so the hull's angular extent is the short way between them.
+      const double ax = glm::dot(ra, reference), ay = glm::dot(ra, binormal);
+      const double bx = glm::dot(rb, reference), by = glm::dot(rb, binormal);
+      const double relative = std::atan2(ax * by - ay * bx, ax * bx + ay * by);
+      const double cb = 0.5 * (ea.lo + ea.hi) + relative / step;
+      const double hb = 0.5 * (eb.hi - eb.lo);
+      return {std::min(ea.lo, cb - hb), std::max(ea.hi, cb + hb), false};
+    }
+  }
+  return {};
+}
+
 // --- RowMotion ---------------------------------------------------------------------------------------
 
 RowMotion RowMotion::from(const Similarity& s) { return from(s.transform()); }
@@ -93,138 +258,37 @@ RowMotion RowMotion::from(const SimilarityTransform& t) {
   const CanonicalForm c = Similarity::from_transform(t).canonical();
   RowMotion m;
   m.kind_ = c.kind;
+  m.canonical_ = c;
   switch (c.kind) {
     case SimilarityKind::Identity: break;
     case SimilarityKind::Translation: {
-      m.translates_ = true;
-      m.step_ = glm::length(c.translation);
-      m.axis_ = c.translation / m.step_;
-      m.point_ = Vec3(0.0);
+      const double d = glm::length(c.translation);
+      m.maps_.push_back(NormalizedMap::translation(Vec3(0.0), c.translation / d, d));
       break;
     }
-    case SimilarityKind::Rotation:
+    case SimilarityKind::Rotation: m.maps_.push_back(NormalizedMap::rotation(c.point, c.axis, c.angle)); break;
     case SimilarityKind::Screw:
-      m.rotates_ = true;
-      m.translates_ = c.kind == SimilarityKind::Screw;
-      m.axis_ = c.axis;
-      m.point_ = c.point;
-      m.angle_ = c.angle;
-      m.step_ = c.distance;
+      m.maps_.push_back(NormalizedMap::translation(c.point, c.axis, c.distance));
+      m.maps_.push_back(NormalizedMap::rotation(c.point, c.axis, c.angle));
       break;
-    case SimilarityKind::Dilation:
-      m.dilates_ = true;
-      m.point_ = c.point;
-      m.log_scale_ = std::log(c.scale);
-      break;
+    case SimilarityKind::Dilation: m.maps_.push_back(NormalizedMap::dilation(c.point, std::log(c.scale))); break;
     case SimilarityKind::Swirl:
-      m.dilates_ = true;
-      m.rotates_ = true;
-      m.axis_ = c.axis;
-      m.point_ = c.point;
-      m.angle_ = c.angle;
-      m.log_scale_ = std::log(c.scale);
+      m.maps_.push_back(NormalizedMap::dilation(c.point, std::log(c.scale)));
+      m.maps_.push_back(NormalizedMap::rotation(c.point, c.axis, c.angle));
       break;
-  }
-  if (m.rotates_) {
-    // Reference direction N orthogonal to the axis: the basis vector least aligned with it.
-    const Vec3& a = m.axis_;
-    Vec3 e(0.0);
-    const Vec3 abs_a(std::abs(a.x), std::abs(a.y), std::abs(a.z));
-    e[abs_a.x <= abs_a.y && abs_a.x <= abs_a.z ? 0 : (abs_a.y <= abs_a.z ? 1 : 2)] = 1.0;
-    m.reference_ = glm::normalize(glm::cross(a, e));
-    m.binormal_ = glm::cross(a, m.reference_);
   }
   return m;
 }
 
-double RowMotion::translation_map(const Vec3& x) const { return glm::dot(x - point_, axis_) / step_; }
-
-double RowMotion::dilation_map(const Vec3& x) const {
-  const double r = glm::length(x - point_);
-  if (r == 0.0) return log_scale_ > 0.0 ? -kInf : kInf;
-  return std::log(r) / log_scale_;
+const NormalizedMap* RowMotion::find(NormalizedMap::Type type) const {
+  for (const NormalizedMap& m : maps_)
+    if (m.type == type) return &m;
+  return nullptr;
 }
 
-double RowMotion::rotation_map(const Vec3& x, int branch) const {
-  const Vec3 w = x - point_;
-  const double px = glm::dot(w, reference_), py = glm::dot(w, binormal_);
-  if (px == 0.0 && py == 0.0) return std::numeric_limits<double>::quiet_NaN();
-  return std::atan2(py, px) / angle_ + branch * (kTwoPi / angle_);
-}
-
-Extent RowMotion::translation_extent(const Ball& ball) const {
-  const double c = translation_map(ball.center), h = ball.radius / std::abs(step_);
-  return widened({c - h, c + h, false}, 0.0);
-}
-
-Extent RowMotion::translation_extent(const Ball& a, const Ball& b) const {
-  // The extreme points of the hull along the axis lie in one of its balls.
-  const Extent ea = translation_extent(a), eb = translation_extent(b);
-  return {std::min(ea.lo, eb.lo), std::max(ea.hi, eb.hi), false};
-}
-
-Extent RowMotion::dilation_extent(const Ball& ball) const {
-  const double rho = glm::length(ball.center - point_);
-  const double far = std::log(rho + ball.radius) / log_scale_;
-  Extent e;
-  if (rho <= ball.radius) {
-    // The fixed point is inside: its map value is -inf (s > 1) or +inf (s < 1).
-    e = log_scale_ > 0.0 ? Extent{-kInf, far, false} : Extent{far, kInf, false};
-  } else {
-    const double near = std::log(rho - ball.radius) / log_scale_;
-    e = {std::min(near, far), std::max(near, far), false};
-  }
-  return widened(e, kRangeLogSlack / std::abs(log_scale_));
-}
-
-Extent RowMotion::dilation_extent(const Ball& a, const Ball& b) const {
-  // The farthest point from F lies in a ball; the nearest may lie on the cone: add ln(distance to hull).
-  const Extent ea = dilation_extent(a), eb = dilation_extent(b);
-  Extent e{std::min(ea.lo, eb.lo), std::max(ea.hi, eb.hi), false};
-  const double f = distance_to_hull(point_, a, b);
-  if (f <= 0.0) {
-    if (log_scale_ > 0.0)
-      e.lo = -kInf;
-    else
-      e.hi = kInf;
-  } else {
-    const double m = std::log(f) / log_scale_;
-    const double slack = kRangeLogSlack / std::abs(log_scale_) + kRangeRelativeSlack * std::abs(m);
-    e.lo = std::min(e.lo, m - slack);
-    e.hi = std::max(e.hi, m + slack);
-  }
-  return e;
-}
-
-Extent RowMotion::rotation_extent(const Ball& ball) const {
-  const Vec3 w = ball.center - point_;
-  const double px = glm::dot(w, reference_), py = glm::dot(w, binormal_);
-  const double rho = std::hypot(px, py);
-  // The axis meets the ball (or nearly: asin would lose its accuracy): every angle.
-  if (rho <= ball.radius * (1.0 + 1e-14) || rho == 0.0) return {0.0, 0.0, true};
-  const double c = std::atan2(py, px) / angle_;
-  const double h = std::asin(std::min(1.0, ball.radius / rho)) / angle_;
-  return widened({c - h, c + h, false}, kRangeAngleSlack / angle_);
-}
-
-Extent RowMotion::rotation_extent(const Ball& a, const Ball& b) const {
-  // The beam's shadow along the axis is the 2D hull of the two disks; the axis meets the beam exactly
-  // when that shadow contains the axis point.
-  const Vec3 wa = a.center - point_, wb = b.center - point_;
-  const Vec3 pa = a.center - glm::dot(wa, axis_) * axis_, pb = b.center - glm::dot(wb, axis_) * axis_;
-  const double shadow_gap = distance_to_hull(point_, {pa, a.radius}, {pb, b.radius});
-  const double scale = glm::length(pa - point_) + glm::length(pb - point_) + a.radius + b.radius;
-  if (shadow_gap <= 1e-14 * scale) return {0.0, 0.0, true};
-  const Extent ea = rotation_extent(a), eb_alone = rotation_extent(b);
-  if (ea.full || eb_alone.full) return {0.0, 0.0, true};
-  // b's center mapped relative to a's (the paper's "proper mapping"), so both ends share a branch lift.
-  const double ax = glm::dot(wa, reference_), ay = glm::dot(wa, binormal_);
-  const double bx = glm::dot(wb, reference_), by = glm::dot(wb, binormal_);
-  const double relative = std::atan2(ax * by - ay * bx, ax * bx + ay * by);
-  const double ca = 0.5 * (ea.lo + ea.hi);
-  const double cb = ca + relative / angle_;
-  const double hb = 0.5 * (eb_alone.hi - eb_alone.lo);
-  return {std::min(ea.lo, cb - hb), std::max(ea.hi, cb + hb), false};
+double RowMotion::angle() const {
+  const NormalizedMap* r = find(NormalizedMap::Type::Rotation);
+  return r ? r->step : 0.0;
 }
 
 // --- theorems ------------------------------------------------------------------------------------------
@@ -261,36 +325,31 @@ void steady_row_ranges(const RowMotion& motion, const RowTemplate& templ, const 
                        IndexRanges& out) {
   out.clear();
   if (rows.empty()) return;
-  IndexRange range = rows;
-  switch (motion.kind()) {
-    case SimilarityKind::Identity: {
-      // Every instance is the template itself.
-      const double d = templ.is_beam ? distance_to_hull(query.center, templ.a, templ.b)
-                                     : distance_to_ball(query.center, templ.a);
-      if (d <= query.radius) out.add(range);
-      return;
-    }
-    case SimilarityKind::Translation:
-    case SimilarityKind::Screw: {
-      const Extent t = templ.is_beam ? motion.translation_extent(templ.a, templ.b) : motion.translation_extent(templ.a);
-      range = candidate_range(motion.translation_extent(query), t, range);
-      break;
-    }
-    case SimilarityKind::Dilation:
-    case SimilarityKind::Swirl: {
-      const Extent t = templ.is_beam ? motion.dilation_extent(templ.a, templ.b) : motion.dilation_extent(templ.a);
-      range = candidate_range(motion.dilation_extent(query), t, range);
-      break;
-    }
-    case SimilarityKind::Rotation: break;
+  if (motion.kind() == SimilarityKind::Identity) {
+    // Every instance is the template itself.
+    const double d = templ.is_beam ? distance_to_hull(query.center, templ.a, templ.b)
+                                   : distance_to_ball(query.center, templ.a);
+    if (d <= query.radius) out.add(rows);
+    return;
   }
-  if (range.empty()) return;
-  if (!motion.rotates()) {
+  // The single-valued maps first (cheap, and they bound the wraps the rotation map has to visit).
+  IndexRange range = rows;
+  const NormalizedMap* rotation = nullptr;
+  for (const NormalizedMap& m : motion.maps()) {
+    if (m.type == NormalizedMap::Type::Rotation) {
+      rotation = &m;
+      continue;
+    }
+    const Extent t = templ.is_beam ? m.extent(templ.a, templ.b) : m.extent(templ.a);
+    range = candidate_range(m.extent(query), t, range);
+    if (range.empty()) return;
+  }
+  if (!rotation) {
     out.add(range);
     return;
   }
-  const Extent t = templ.is_beam ? motion.rotation_extent(templ.a, templ.b) : motion.rotation_extent(templ.a);
-  rotation_candidate_ranges(motion.rotation_extent(query), t, kTwoPi / motion.angle(), range, out);
+  const Extent t = templ.is_beam ? rotation->extent(templ.a, templ.b) : rotation->extent(templ.a);
+  rotation_candidate_ranges(rotation->extent(query), t, rotation->period(), range, out);
   out.normalize();
 }
 

@@ -77,11 +77,22 @@ TEST(RangeFinder, BranchMinusOneCounterExample) {
   // Measure angles from the x axis like the digest (our reference direction may differ: rotate the
   // setup so the cut falls where the digest puts it).
   const double a0 = -kPi + std::asin(0.05) + 0.01, aq = kPi - 0.02;
-  // Find the map's own zero direction, then place both balls relative to it.
-  const double offset = std::atan2(0.0, 1.0) - m.rotation_map({1, 0, 0}) * 0.3;
-  const Ball templ{{10 * std::cos(a0 - offset), 10 * std::sin(a0 - offset), 1}, 0.5};
-  const Ball query{{10 * std::cos(aq - offset), 10 * std::sin(aq - offset), 1}, 1.0};
+  // Place both balls relative to the map's own zero direction (its angle of the x axis is subtracted).
+  const double offset = -m.rotation_map({1, 0, 0}) * 0.3;
+  const Ball templ{{10 * std::cos(a0 + offset), 10 * std::sin(a0 + offset), 1}, 0.5};
+  const Ball query{{10 * std::cos(aq + offset), 10 * std::sin(aq + offset), 1}, 1.0};
+  ASSERT_NEAR(m.rotation_map(templ.center) * 0.3, a0, 1e-12);
+  ASSERT_NEAR(m.rotation_map(query.center) * 0.3, aq, 1e-12);
   ASSERT_LE(distance_to_ball(query.center, templ), query.radius);  // brute force: instance 0 meets
+  // The paper's rule: template extent on branch 0 (shifted by one period if it starts in branch -1),
+  // query extents on branches 0 and 1 only. It finds nothing here.
+  const double P = 2 * kPi / 0.3;
+  Extent t = m.rotation_extent(templ);
+  if (t.lo < -0.5 * P) t = {t.lo + P, t.hi + P, false};
+  const Extent q = m.rotation_extent(query);
+  IndexRanges paper;
+  for (int b = 0; b <= 1; ++b) paper.add(candidate_range({q.lo + b * P, q.hi + b * P, false}, t, {0, 3}));
+  EXPECT_TRUE(paper.empty());
   IndexRanges r;
   steady_row_ranges(m, RowTemplate::ball(templ), {0, 3}, query, r);
   EXPECT_TRUE(r.contains(0));

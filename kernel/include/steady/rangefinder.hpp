@@ -16,13 +16,18 @@
 // the template's *extent* under M, and it can meet the query only if that interval overlaps the query's
 // extent [sq, eq]: k in [ceil(sq - e0), floor(eq - s0)] (the paper's theorem).
 //
+// One more map, not in the paper: for a dilation (or a swirl) about F, the distance to any line A through
+// F (for a swirl: its axis) scales by s too, so M(x) = ln dist(x, A) / ln s is normalized. It is what
+// makes a cylindrical lattice's radial direction invariant under its rotation and its axial translation
+// (see LatticeQuery: the O(1) path then applies where the paper only had O(u)).
+//
 // The rotation map is multi-valued: the query's extent exists in every branch, sq + b P, eq + b P with
 // P = 2 pi / |theta|. Instead of the paper's two-branch rule (which misses the branch -1 case of the
 // digest's counter-example and rows that wrap) every branch b whose window meets the row's index range
 // is evaluated, so the answer is a list of disjoint ranges, one per wrap at most.
 //
 // Conservative by construction: extents are widened by a slack covering the rounding of logarithms,
-// angles and divisions (see rangefinder.cpp); callers inflate the query ball to cover the rounding of
+// angles and divisions (query_tolerance.hpp); callers inflate the query ball to cover the rounding of
 // the elements' own evaluation.
 #include <cstdint>
 #include <vector>
@@ -69,6 +74,31 @@ struct Extent {
   bool full = false;
 };
 
+// One normalized map of a row motion.
+struct NormalizedMap {
+  enum class Type { Translation, Dilation, AxisDilation, Rotation };
+  Type type = Type::Translation;
+  Vec3 point{0.0};                 // P on the axis, or the fixed point F
+  Vec3 axis{0.0, 0.0, 1.0};        // unit (translation direction, rotation axis, line of AxisDilation)
+  Vec3 reference{1.0, 0.0, 0.0};   // rotation: N, orthogonal to the axis
+  Vec3 binormal{0.0, 1.0, 0.0};    // rotation: axis x N
+  double step = 1.0;               // per step: distance (T), ln s (D, AxisDilation), angle in (0, pi] (R)
+
+  static NormalizedMap translation(const Vec3& point, const Vec3& unit_axis, double distance);
+  static NormalizedMap dilation(const Vec3& fixed_point, double log_scale);
+  static NormalizedMap axis_dilation(const Vec3& point, const Vec3& unit_axis, double log_scale);
+  static NormalizedMap rotation(const Vec3& point, const Vec3& unit_axis, double angle);
+
+  // M(x); the rotation value is on branch `branch` (NaN on the axis); dilations give +-inf at F / on A.
+  double value(const Vec3& x, int branch = 0) const;
+  // Extent of a ball, and of a beam (the convex hull of balls a and b). Rotation extents are lifted
+  // around the branch-0 value of the (start) ball's center.
+  Extent extent(const Ball& ball) const;
+  Extent extent(const Ball& a, const Ball& b) const;
+  // The rotation period 2 pi / theta in map units (rotation maps only).
+  double period() const;
+};
+
 // The canonical decomposition of a row's incremental similarity S with the normalized maps of its
 // primitives. Built from the group element of S (its principal logarithm), so only the map S matters.
 class RowMotion {
@@ -77,38 +107,42 @@ class RowMotion {
   static RowMotion from(const SimilarityTransform& t);
 
   SimilarityKind kind() const { return kind_; }
-  bool translates() const { return translates_; }  // translation or screw: the T-map applies
-  bool dilates() const { return dilates_; }        // dilation or swirl: the D-map applies
-  bool rotates() const { return rotates_; }        // rotation, screw or swirl: the R-map applies
+  const CanonicalForm& canonical() const { return canonical_; }
+  bool translates() const { return find(NormalizedMap::Type::Translation) != nullptr; }
+  bool dilates() const { return find(NormalizedMap::Type::Dilation) != nullptr; }
+  bool rotates() const { return find(NormalizedMap::Type::Rotation) != nullptr; }
+  double angle() const;  // theta per step in (0, pi] of the rotation map
 
-  // Rotation and translation axis (unit) and a point on it (the fixed point F for a swirl or dilation).
-  const Vec3& axis() const { return axis_; }
-  const Vec3& point() const { return point_; }
-  double angle() const { return angle_; }          // theta per step, in (0, pi]
-  double step_distance() const { return step_; }   // d per step along the axis (translation, screw)
-  double log_scale() const { return log_scale_; }  // ln s per step (dilation, swirl)
+  // The maps RangeFinder intersects. Dropping maps keeps the ranges valid (looser); a non-identity
+  // motion with no map left yields the full range.
+  const std::vector<NormalizedMap>& maps() const { return maps_; }
+  const NormalizedMap* find(NormalizedMap::Type type) const;
+  void add_map(const NormalizedMap& map) { maps_.push_back(map); }
+  void remove_map(std::size_t index) { maps_.erase(maps_.begin() + static_cast<std::ptrdiff_t>(index)); }
 
-  // --- normalized maps: M(S(x)) = M(x) + 1 -------------------------------------------------------------
-  double translation_map(const Vec3& x) const;
-  double dilation_map(const Vec3& x) const;             // -inf or +inf at the fixed point
-  double rotation_map(const Vec3& x, int branch = 0) const;  // undefined (NaN) on the axis
-
-  // --- extents under each map (normalized units) ------------------------------------------------------
-  // A ball, and a beam: the convex hull of balls a and b. Rotation extents are on the branch of the
-  // ball's (the beam's start ball's) center; `full` when the axis meets the shape.
-  Extent translation_extent(const Ball& ball) const;
-  Extent translation_extent(const Ball& a, const Ball& b) const;
-  Extent dilation_extent(const Ball& ball) const;
-  Extent dilation_extent(const Ball& a, const Ball& b) const;
-  Extent rotation_extent(const Ball& ball) const;
-  Extent rotation_extent(const Ball& a, const Ball& b) const;
+  // The paper's maps of this motion (convenience for tests; the map must exist).
+  double translation_map(const Vec3& x) const { return find(NormalizedMap::Type::Translation)->value(x); }
+  double dilation_map(const Vec3& x) const { return find(NormalizedMap::Type::Dilation)->value(x); }
+  double rotation_map(const Vec3& x, int branch = 0) const {
+    return find(NormalizedMap::Type::Rotation)->value(x, branch);
+  }
+  Extent translation_extent(const Ball& b) const { return find(NormalizedMap::Type::Translation)->extent(b); }
+  Extent translation_extent(const Ball& a, const Ball& b) const {
+    return find(NormalizedMap::Type::Translation)->extent(a, b);
+  }
+  Extent dilation_extent(const Ball& b) const { return find(NormalizedMap::Type::Dilation)->extent(b); }
+  Extent dilation_extent(const Ball& a, const Ball& b) const {
+    return find(NormalizedMap::Type::Dilation)->extent(a, b);
+  }
+  Extent rotation_extent(const Ball& b) const { return find(NormalizedMap::Type::Rotation)->extent(b); }
+  Extent rotation_extent(const Ball& a, const Ball& b) const {
+    return find(NormalizedMap::Type::Rotation)->extent(a, b);
+  }
 
  private:
   SimilarityKind kind_ = SimilarityKind::Identity;
-  bool translates_ = false, dilates_ = false, rotates_ = false;
-  Vec3 axis_{0.0, 0.0, 1.0}, point_{0.0};
-  Vec3 reference_{1.0, 0.0, 0.0}, binormal_{0.0, 1.0, 0.0};  // N and axis x N for the rotation map
-  double angle_ = 0.0, step_ = 0.0, log_scale_ = 0.0;
+  CanonicalForm canonical_;
+  std::vector<NormalizedMap> maps_;
 };
 
 // The shape of a row's template R_0: a ball, or a beam (convex hull of two balls).
