@@ -186,9 +186,13 @@ void Lattice::build_indexing() {
   for (int p = 0; p < np; ++p) {
     const BeamPattern& b = def_.beams[p];
     PatternRange& r = pattern_ranges_[p];
-    r.i1 = r.i0 + overlap(def_.counts.u, b.di, &r.i0);
-    r.j1 = r.j0 + overlap(def_.counts.v, b.dj, &r.j0);
-    r.k1 = r.k0 + overlap(def_.counts.w, b.dk, &r.k0);
+    // overlap() sets the start index: call it before reading it (the order inside one expression is unspecified).
+    const std::int64_t ni = overlap(def_.counts.u, b.di, &r.i0);
+    const std::int64_t nj = overlap(def_.counts.v, b.dj, &r.j0);
+    const std::int64_t nk = overlap(def_.counts.w, b.dk, &r.k0);
+    r.i1 = r.i0 + ni;
+    r.j1 = r.j0 + nj;
+    r.k1 = r.k0 + nk;
     auto in_range = [&r](std::int64_t i, std::int64_t j, std::int64_t k) {
       return i >= r.i0 && i < r.i1 && j >= r.j0 && j < r.j1 && k >= r.k0 && k < r.k1;
     };
