@@ -325,7 +325,7 @@ void steady_row_ranges(const RowMotion& motion, const RowTemplate& templ, const 
                        IndexRanges& out) {
   out.clear();
   if (rows.empty()) return;
-  if (motion.kind() == SimilarityKind::Identity) {
+  if (motion.kind() == SimilarityKind::Identity && motion.identity_tests_template()) {
     // Every instance is the template itself.
     const double d = templ.is_beam ? distance_to_hull(query.center, templ.a, templ.b)
                                    : distance_to_ball(query.center, templ.a);

@@ -119,6 +119,11 @@ class RowMotion {
   const NormalizedMap* find(NormalizedMap::Type type) const;
   void add_map(const NormalizedMap& map) { maps_.push_back(map); }
   void remove_map(std::size_t index) { maps_.erase(maps_.begin() + static_cast<std::ptrdiff_t>(index)); }
+  // For the identity every instance is the template, so RangeFinder tests the template itself. That is
+  // only right when the template is the row's own element 0; paths that let one template stand in for
+  // several rows (O(u), O(1)) turn it off and get the full range instead.
+  bool identity_tests_template() const { return identity_tests_template_; }
+  void set_identity_tests_template(bool on) { identity_tests_template_ = on; }
 
   // The paper's maps of this motion (convenience for tests; the map must exist).
   double translation_map(const Vec3& x) const { return find(NormalizedMap::Type::Translation)->value(x); }
@@ -143,6 +148,7 @@ class RowMotion {
   SimilarityKind kind_ = SimilarityKind::Identity;
   CanonicalForm canonical_;
   std::vector<NormalizedMap> maps_;
+  bool identity_tests_template_ = true;
 };
 
 // The shape of a row's template R_0: a ball, or a beam (convex hull of two balls).

@@ -1,0 +1,169 @@
+#include "steady/lattice_query.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "query_internal.hpp"
+#include "steady/errors.hpp"
+#include "steady/query_tolerance.hpp"
+
+namespace steady {
+
+const char* to_string(QueryMethod method) {
+  switch (method) {
+    case QueryMethod::Auto: return "auto";
+    case QueryMethod::Naive: return "naive";
+    case QueryMethod::Rows: return "rows";
+    case QueryMethod::Slabs: return "slabs";
+    case QueryMethod::Constant: return "constant";
+    case QueryMethod::Blocks: return "blocks";
+  }
+  return "unknown";
+}
+
+QueryMethod query_method_from_string(const std::string& name, const std::string& field) {
+  for (QueryMethod m : {QueryMethod::Auto, QueryMethod::Naive, QueryMethod::Rows, QueryMethod::Slabs,
+                        QueryMethod::Constant, QueryMethod::Blocks})
+    if (name == to_string(m)) return m;
+  fail_input(field, "unknown query method '" + name + "' (auto, naive, rows, slabs, constant, blocks)");
+}
+
+void validate_query_ball(const Ball& query, const std::string& field) {
+  for (int c = 0; c < 3; ++c) require_finite(query.center[c], field + ".center");
+  require_finite(query.radius, field + ".radius");
+  if (query.radius < 0.0) fail_input(field + ".radius", "must be >= 0 (got " + std::to_string(query.radius) + ")");
+}
+
+namespace detail {
+
+namespace {
+std::int64_t largest_offset(const Lattice& lattice) {
+  std::int64_t m = 1;
+  for (const BeamPattern& b : lattice.definition().beams)
+    m = std::max<std::int64_t>({m, std::abs(b.di), std::abs(b.dj), std::abs(b.dk)});
+  return m;
+}
+}  // namespace
+
+QueryState::QueryState(const Lattice& lat)
+    : lattice(lat), eval(lat, largest_offset(lat)), bounds(lat, largest_offset(lat)), margin(largest_offset(lat)) {
+  bound = bounds.lattice_bound();
+  length_scale = glm::length(bound.center) + bound.radius;
+  const Counts& c = lat.counts();
+  const auto& nodes = lat.definition().nodes;
+  for (const auto& n : nodes) node_templates.push_back({n.center, n.radius});
+  for (const BeamPattern& b : lat.definition().beams) {
+    const auto& a = nodes[static_cast<std::size_t>(b.from)];
+    const auto& e = nodes[static_cast<std::size_t>(b.to)];
+    beam_start_templates.push_back({a.center, b.has_radii() ? *b.from_radius : a.radius});
+    beam_end_templates.push_back({e.center, b.has_radii() ? *b.to_radius : e.radius});
+    const int d[3] = {b.di, b.dj, b.dk};
+    for (int a = 0; a < 3; ++a) {
+      reach[a][0] = std::min<std::int64_t>(reach[a][0], d[a]);
+      reach[a][1] = std::max<std::int64_t>(reach[a][1], d[a]);
+    }
+    IndexBlock s{std::max<std::int64_t>(0, -b.di), std::min<std::int64_t>(c.u, c.u - b.di),
+                 std::max<std::int64_t>(0, -b.dj), std::min<std::int64_t>(c.v, c.v - b.dj),
+                 std::max<std::int64_t>(0, -b.dk), std::min<std::int64_t>(c.w, c.w - b.dk)};
+    pattern_starts.push_back(s);
+  }
+  detect_plan(*this);
+}
+
+double QueryState::inflation(const Ball& query) const {
+  const Counts& c = lattice.counts();
+  const double steps = static_cast<double>(c.u) + static_cast<double>(c.v) + static_cast<double>(c.w);
+  return (kQueryInflation + kQueryInflationPerStep * steps) *
+         (length_scale + glm::length(query.center) + query.radius);
+}
+
+}  // namespace detail
+
+struct LatticeQuery::Impl {
+  detail::QueryState state;
+  explicit Impl(const Lattice& lattice) : state(lattice) {}
+};
+
+namespace {
+thread_local std::int64_t g_last_candidates = 0;
+}
+
+LatticeQuery::LatticeQuery(const Lattice& lattice) : impl_(std::make_unique<Impl>(lattice)) {}
+LatticeQuery::~LatticeQuery() = default;
+LatticeQuery::LatticeQuery(LatticeQuery&&) noexcept = default;
+
+const Lattice& LatticeQuery::lattice() const { return impl_->state.lattice; }
+const QueryPlan& LatticeQuery::plan() const { return impl_->state.plan; }
+const BlockBounds& LatticeQuery::block_bounds() const { return impl_->state.bounds; }
+const Ball& LatticeQuery::bound() const { return impl_->state.bound; }
+std::int64_t LatticeQuery::last_candidate_count() { return g_last_candidates; }
+
+QueryMethod LatticeQuery::resolve(QueryMethod method) const {
+  const QueryPlan& p = impl_->state.plan;
+  switch (method) {
+    case QueryMethod::Auto: return p.automatic;
+    case QueryMethod::Slabs:
+      if (!p.slabs_valid) fail_input("method", std::string("'slabs' (O(u)) does not apply: ") + p.slabs_reason);
+      return method;
+    case QueryMethod::Constant:
+      if (!p.constant_valid)
+        fail_input("method", std::string("'constant' (O(1)) does not apply: ") + p.constant_reason);
+      return method;
+    default: return method;
+  }
+}
+
+void LatticeQuery::visit(const Ball& query, HitSink& sink, QueryMethod method) const {
+  validate_query_ball(query, "query");
+  const detail::QueryState& q = impl_->state;
+  const QueryMethod m = resolve(method);
+  detail::Probe probe{q, query, query, sink};
+  probe.inflated.radius = query.radius + q.inflation(query);
+  if (m == QueryMethod::Slabs) probe.inflated.radius += q.plan.slabs_inflation;
+  if (m == QueryMethod::Constant) probe.inflated.radius += q.plan.constant_inflation;
+  g_last_candidates = 0;
+  // Outside the lattice's bound there is nothing to find (the naive path scans regardless: it is the oracle).
+  if (m != QueryMethod::Naive && distance_to_ball(query.center, q.bound) > probe.inflated.radius) return;
+  switch (m) {
+    case QueryMethod::Naive: detail::visit_naive(q, probe); break;
+    case QueryMethod::Rows: detail::visit_rows(q, probe); break;
+    case QueryMethod::Slabs: detail::visit_slabs(q, probe); break;
+    case QueryMethod::Constant: detail::visit_constant(q, probe); break;
+    case QueryMethod::Blocks:
+    case QueryMethod::Auto: detail::visit_blocks(q, probe); break;
+  }
+  g_last_candidates = probe.candidates;
+}
+
+namespace {
+struct CollectSink : HitSink {
+  BallQueryResult result;
+  bool on_hit(const ElementHit& hit) override {
+    (hit.is_beam ? result.beams : result.balls).push_back(hit.index);
+    return true;
+  }
+};
+struct AnySink : HitSink {
+  bool found = false;
+  bool on_hit(const ElementHit&) override {
+    found = true;
+    return false;
+  }
+};
+}  // namespace
+
+BallQueryResult LatticeQuery::query_ball(const Ball& query, QueryMethod method) const {
+  CollectSink sink;
+  visit(query, sink, method);
+  std::sort(sink.result.balls.begin(), sink.result.balls.end());
+  std::sort(sink.result.beams.begin(), sink.result.beams.end());
+  return std::move(sink.result);
+}
+
+bool LatticeQuery::touches(const Ball& query, QueryMethod method) const {
+  AnySink sink;
+  visit(query, sink, method);
+  return sink.found;
+}
+
+}  // namespace steady

@@ -1,0 +1,94 @@
+#pragma once
+// Shared state of the ball-interference paths (lattice_query.cpp dispatches to query_naive.cpp,
+// query_rangefinder.cpp and query_blocks.cpp; query_plan.cpp detects which apply).
+#include <cstdint>
+#include <vector>
+
+#include "element_evaluator.hpp"
+#include "steady/interference.hpp"
+#include "steady/lattice_query.hpp"
+
+namespace steady::detail {
+
+struct QueryState {
+  const Lattice& lattice;
+  ElementEvaluator eval;
+  BlockBounds bounds;
+  Ball bound;                 // contains the whole lattice
+  double length_scale = 1.0;  // |bound.center| + bound.radius
+  QueryPlan plan;
+  std::vector<IndexBlock> pattern_starts;  // per pattern: the start groups where its beams can exist
+  std::int64_t margin = 1;                 // largest |offset| of a beam pattern
+  std::int64_t reach[3][2]{};              // smallest and largest di, dj, dk of the patterns (0 included)
+  // Template-coordinate balls whose images bound each kind of element: per node its ball, per pattern
+  // its two end balls (the beam's own radii when given).
+  std::vector<Ball> node_templates, beam_start_templates, beam_end_templates;
+
+  explicit QueryState(const Lattice& lattice);
+  // The inflated radius used for ranges and bounds (kQueryInflation, kQueryInflationPerStep).
+  double inflation(const Ball& query) const;
+};
+
+// Tests candidates exactly and reports hits to the sink.
+struct Probe {
+  const QueryState& q;
+  Ball query;     // the caller's ball: the exact tests
+  Ball inflated;  // ranges and bounds
+  HitSink& sink;
+  bool stopped = false;
+  std::int64_t candidates = 0;
+
+  // Each returns false once the sink has asked to stop.
+  bool ball_geometry(const Ball& geometry, std::int64_t i, std::int64_t j, std::int64_t k, int n) {
+    ++candidates;
+    const double d = distance_to_ball(query.center, geometry);
+    if (!(d <= query.radius)) return true;
+    const std::int64_t index = q.lattice.ball_index(NodeId{i, j, k, n});
+    if (index < 0) return true;  // omitted
+    ElementHit hit;
+    hit.is_beam = false;
+    hit.kind = n;
+    hit.i = i, hit.j = j, hit.k = k;
+    hit.index = index;
+    hit.ball = geometry;
+    hit.distance = d;
+    if (!sink.on_hit(hit)) stopped = true;
+    return !stopped;
+  }
+  bool beam_geometry(const BeamGeometry& geometry, std::int64_t i, std::int64_t j, std::int64_t k, int p) {
+    ++candidates;
+    const double d = distance_to_beam(query.center, geometry);
+    if (!(d <= query.radius)) return true;
+    const std::int64_t index = q.lattice.beam_index(BeamId{i, j, k, p});
+    if (index < 0) return true;  // an end is omitted
+    ElementHit hit;
+    hit.is_beam = true;
+    hit.kind = p;
+    hit.i = i, hit.j = j, hit.k = k;
+    hit.index = index;
+    hit.beam = geometry;
+    hit.distance = d;
+    if (!sink.on_hit(hit)) stopped = true;
+    return !stopped;
+  }
+  bool ball(std::int64_t i, std::int64_t j, std::int64_t k, int n) {
+    return ball_geometry(q.eval.node_ball(i, j, k, n), i, j, k, n);
+  }
+  bool ball_in_group(const SimilarityTransform& group, std::int64_t i, std::int64_t j, std::int64_t k, int n) {
+    return ball_geometry(q.eval.node_ball(group, n), i, j, k, n);
+  }
+  bool beam(std::int64_t i, std::int64_t j, std::int64_t k, int p) {
+    return beam_geometry(q.eval.beam(i, j, k, p), i, j, k, p);
+  }
+};
+
+void visit_naive(const QueryState& q, Probe& probe);
+void visit_rows(const QueryState& q, Probe& probe);
+void visit_slabs(const QueryState& q, Probe& probe);
+void visit_constant(const QueryState& q, Probe& probe);
+void visit_blocks(const QueryState& q, Probe& probe);
+
+// Fills q.plan (query_plan.cpp).
+void detect_plan(QueryState& q);
+
+}  // namespace steady::detail
