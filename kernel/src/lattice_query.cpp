@@ -17,15 +17,18 @@ const char* to_string(QueryMethod method) {
     case QueryMethod::Slabs: return "slabs";
     case QueryMethod::Constant: return "constant";
     case QueryMethod::Blocks: return "blocks";
+    case QueryMethod::PaperRows: return "rows-paper";
+    case QueryMethod::PaperSlabs: return "slabs-paper";
   }
   return "unknown";
 }
 
 QueryMethod query_method_from_string(const std::string& name, const std::string& field) {
   for (QueryMethod m : {QueryMethod::Auto, QueryMethod::Naive, QueryMethod::Rows, QueryMethod::Slabs,
-                        QueryMethod::Constant, QueryMethod::Blocks})
+                        QueryMethod::Constant, QueryMethod::Blocks, QueryMethod::PaperRows, QueryMethod::PaperSlabs})
     if (name == to_string(m)) return m;
-  fail_input(field, "unknown query method '" + name + "' (auto, naive, rows, slabs, constant, blocks)");
+  fail_input(field, "unknown query method '" + name +
+                        "' (auto, naive, rows, slabs, constant, blocks, rows-paper, slabs-paper)");
 }
 
 void validate_query_ball(const Ball& query, const std::string& field) {
@@ -67,6 +70,22 @@ QueryState::QueryState(const Lattice& lat)
                  std::max<std::int64_t>(0, -b.dk), std::min<std::int64_t>(c.w, c.w - b.dk)};
     pattern_starts.push_back(s);
   }
+  const SimilarityTransform g = lat.placement().transform();
+  auto world = [&](const Similarity& step, std::int64_t count) {
+    return PowerTable(lat.placement() * step * lat.placement().inverse(), -margin, count - 1 + margin);
+  };
+  world_u = world(lat.step_u(), c.u);
+  world_v = world(lat.step_v(), c.v);
+  world_w = world(lat.step_w(), c.w);
+  const std::int64_t slots = c.u + 2 * margin;
+  if (slots * lat.node_count() <= kMaxPowerTableEntries) {
+    for (std::int64_t i = -margin; i < c.u + margin; ++i) {
+      const SimilarityTransform t = eval.u().at(i);
+      u_scales.push_back(t.scale);
+      for (const auto& n : nodes) u_nodes.push_back(t.apply_point(n.center));
+    }
+  }
+  (void)g;
   detect_plan(*this);
 }
 
@@ -103,6 +122,7 @@ QueryMethod LatticeQuery::resolve(QueryMethod method) const {
   switch (method) {
     case QueryMethod::Auto: return p.automatic;
     case QueryMethod::Slabs:
+    case QueryMethod::PaperSlabs:
       if (!p.slabs_valid) fail_input("method", std::string("'slabs' (O(u)) does not apply: ") + p.slabs_reason);
       return method;
     case QueryMethod::Constant:
@@ -119,15 +139,17 @@ void LatticeQuery::visit(const Ball& query, HitSink& sink, QueryMethod method) c
   const QueryMethod m = resolve(method);
   detail::Probe probe{q, query, query, sink};
   probe.inflated.radius = query.radius + q.inflation(query);
-  if (m == QueryMethod::Slabs) probe.inflated.radius += q.plan.slabs_inflation;
+  if (m == QueryMethod::Slabs || m == QueryMethod::PaperSlabs) probe.inflated.radius += q.plan.slabs_inflation;
   if (m == QueryMethod::Constant) probe.inflated.radius += q.plan.constant_inflation;
   g_last_candidates = 0;
   // Outside the lattice's bound there is nothing to find (the naive path scans regardless: it is the oracle).
   if (m != QueryMethod::Naive && distance_to_ball(query.center, q.bound) > probe.inflated.radius) return;
   switch (m) {
     case QueryMethod::Naive: detail::visit_naive(q, probe); break;
-    case QueryMethod::Rows: detail::visit_rows(q, probe); break;
-    case QueryMethod::Slabs: detail::visit_slabs(q, probe); break;
+    case QueryMethod::Rows: detail::visit_rows(q, probe, true); break;
+    case QueryMethod::PaperRows: detail::visit_rows(q, probe, false); break;
+    case QueryMethod::Slabs: detail::visit_slabs(q, probe, true); break;
+    case QueryMethod::PaperSlabs: detail::visit_slabs(q, probe, false); break;
     case QueryMethod::Constant: detail::visit_constant(q, probe); break;
     case QueryMethod::Blocks:
     case QueryMethod::Auto: detail::visit_blocks(q, probe); break;

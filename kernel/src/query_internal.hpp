@@ -23,6 +23,23 @@ struct QueryState {
   // Template-coordinate balls whose images bound each kind of element: per node its ball, per pattern
   // its two end balls (the beam's own radii when given).
   std::vector<Ball> node_templates, beam_start_templates, beam_end_templates;
+  // World-space powers of the steps, X'^t = G X^t G^-1, to place candidates cheaply before the exact test.
+  PowerTable world_u, world_v, world_w;
+  // U^i applied to the template's node centers, and U^i's scale, for i in [-margin, u - 1 + margin]
+  // (templates of rows and slabs are then one point transform away).
+  std::vector<Vec3> u_nodes;
+  std::vector<double> u_scales;
+  Vec3 u_node(std::int64_t i, int n) const {
+    const std::int64_t slot = i + margin;
+    if (slot >= 0 && slot < static_cast<std::int64_t>(u_scales.size()))
+      return u_nodes[static_cast<std::size_t>(slot * lattice.node_count() + n)];
+    return eval.u().at(i).apply_point(lattice.definition().nodes[static_cast<std::size_t>(n)].center);
+  }
+  double u_scale(std::int64_t i) const {
+    const std::int64_t slot = i + margin;
+    if (slot >= 0 && slot < static_cast<std::int64_t>(u_scales.size())) return u_scales[static_cast<std::size_t>(slot)];
+    return eval.u().at(i).scale;
+  }
 
   explicit QueryState(const Lattice& lattice);
   // The inflated radius used for ranges and bounds (kQueryInflation, kQueryInflationPerStep).
@@ -80,11 +97,27 @@ struct Probe {
   bool beam(std::int64_t i, std::int64_t j, std::int64_t k, int p) {
     return beam_geometry(q.eval.beam(i, j, k, p), i, j, k, p);
   }
+  // The same after a conservative pre-check on an approximate placement of the element (off by far less
+  // than the inflation): most RangeFinder candidates are far from the query in the other directions.
+  bool ball_near(const Ball& approx, std::int64_t i, std::int64_t j, std::int64_t k, int n) {
+    if (distance_to_ball(inflated.center, approx) > inflated.radius) return true;
+    return ball(i, j, k, n);
+  }
+  bool beam_near(const Ball& approx_start, const Ball& approx_end, std::int64_t i, std::int64_t j, std::int64_t k,
+                 int p) {
+    // The hull lies in the ball around its axis midpoint reaching both balls.
+    const Vec3 mid = 0.5 * (approx_start.center + approx_end.center);
+    const double reach = 0.5 * glm::length(approx_end.center - approx_start.center) +
+                         std::max(approx_start.radius, approx_end.radius);
+    if (glm::length(inflated.center - mid) > reach + inflated.radius) return true;
+    return beam(i, j, k, p);
+  }
 };
 
 void visit_naive(const QueryState& q, Probe& probe);
-void visit_rows(const QueryState& q, Probe& probe);
-void visit_slabs(const QueryState& q, Probe& probe);
+// `reject`: skip whole rows (slabs) by their invariants before RangeFinder (off: the paper's algorithm).
+void visit_rows(const QueryState& q, Probe& probe, bool reject);
+void visit_slabs(const QueryState& q, Probe& probe, bool reject);
 void visit_constant(const QueryState& q, Probe& probe);
 void visit_blocks(const QueryState& q, Probe& probe);
 

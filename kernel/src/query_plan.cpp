@@ -126,18 +126,48 @@ double distance_to_line(const Vec3& p, const Vec3& point, const Vec3& unit) {
   return glm::length(w - glm::dot(w, unit) * unit);
 }
 
+// True when the two maps are the same function of space (within a relative 1e-12).
+bool same_map(const NormalizedMap& a, const NormalizedMap& b, double length_scale) {
+  if (a.type != b.type) return false;
+  const double e = 1e-12;
+  switch (a.type) {
+    case NormalizedMap::Type::Translation: {
+      // (x - P) . a / d: compare the gradients a / d and the offsets P . a / d.
+      const Vec3 ga = a.axis / a.step, gb = b.axis / b.step;
+      return glm::length(ga - gb) <= e * glm::length(ga) &&
+             std::abs(glm::dot(a.point, ga) - glm::dot(b.point, gb)) <= e * (1.0 + length_scale * glm::length(ga));
+    }
+    case NormalizedMap::Type::Dilation:
+      return std::abs(a.step - b.step) <= e * std::abs(a.step) && glm::length(a.point - b.point) <= e * length_scale;
+    case NormalizedMap::Type::AxisDilation:
+    case NormalizedMap::Type::Rotation: {
+      const Vec3 w = b.point - a.point;
+      return std::abs(a.step - b.step) <= e * std::abs(a.step) && glm::length(glm::cross(a.axis, b.axis)) <= e &&
+             glm::dot(a.axis, b.axis) > 0.0 && glm::length(w - glm::dot(w, a.axis) * a.axis) <= e * length_scale;
+    }
+  }
+  return false;
+}
+
+void add_unique_map(RowMotion& m, const NormalizedMap& map, double length_scale) {
+  for (const NormalizedMap& x : m.maps())
+    if (same_map(x, map, length_scale)) return;
+  m.add_map(map);
+}
+
 // Maps not in the paper that may survive where the canonical ones do not (see rangefinder.hpp).
 void add_candidate_maps(Direction& x, const std::vector<const Direction*>& others, double tol) {
+  const double length_scale = tol / kConditionTolerance;
   const CanonicalForm& c = x.motion.canonical();
   if (c.kind == SimilarityKind::Dilation) {
     // Distance to a line through F along another direction's axis (a rotation's axis must pass F).
     for (const Direction* y : others) {
       if (!y->has_direction) continue;
       if (y->axis_is_line && distance_to_line(c.point, y->axis_point, y->direction) > tol) continue;
-      x.motion.add_map(NormalizedMap::axis_dilation(c.point, y->direction, std::log(c.scale)));
+      add_unique_map(x.motion, NormalizedMap::axis_dilation(c.point, y->direction, std::log(c.scale)), length_scale);
     }
   } else if (c.kind == SimilarityKind::Swirl) {
-    x.motion.add_map(NormalizedMap::axis_dilation(c.point, c.axis, std::log(c.scale)));
+    add_unique_map(x.motion, NormalizedMap::axis_dilation(c.point, c.axis, std::log(c.scale)), length_scale);
   } else if (c.kind == SimilarityKind::Translation) {
     // Projections orthogonal to the other directions (the dual basis of a sheared regular lattice).
     std::vector<Vec3> dirs;
@@ -152,7 +182,7 @@ void add_candidate_maps(Direction& x, const std::vector<const Direction*>& other
       n /= len;
       const double step = glm::dot(c.translation, n);
       if (std::abs(step) < 1e-6 * glm::length(c.translation)) continue;
-      x.motion.add_map(NormalizedMap::translation(Vec3(0.0), n, step));
+      add_unique_map(x.motion, NormalizedMap::translation(Vec3(0.0), n, step), length_scale);
     }
   }
 }

@@ -1,9 +1,11 @@
 // The RangeFinder paths of the ball-interference query: O(uv) rows along W, the paper's O(u) slabs and
-// O(1) bricks. Templates are evaluated with the lattice's own evaluator; RangeFinder sees the inflated
-// query, the exact tests the caller's.
+// O(1) bricks. Templates are evaluated from the power tables; RangeFinder sees the inflated query, whose
+// extents are computed once per query; each candidate is placed cheaply with the world-space powers and
+// pre-checked before its exact geometry is evaluated and tested against the caller's ball.
 #include <algorithm>
 
 #include "query_internal.hpp"
+#include "steady/row_invariant.hpp"
 
 namespace steady::detail {
 
@@ -11,7 +13,7 @@ namespace {
 
 IndexRange full(std::int64_t lo, std::int64_t hi_exclusive) { return {lo, hi_exclusive - 1}; }
 
-// The distinct (dj, dk) of the patterns, with (0, 0) first: one row prefix each per j.
+// The distinct (dj, dk) of the patterns, (0, 0) first: one row prefix each.
 struct PrefixOffsets {
   std::vector<std::pair<int, int>> offsets;
   std::vector<int> of_pattern;
@@ -29,78 +31,238 @@ struct PrefixOffsets {
   }
 };
 
+// Templates of every node and pattern for one group (i, j, 0) given the row prefixes (G W^dk V^(j+dj)).
+struct GroupTemplates {
+  std::vector<Ball> nodes;
+  std::vector<Ball> beam_start, beam_end;
+  void fill(const QueryState& q, const PrefixOffsets& po, const std::vector<SimilarityTransform>& prefix, std::int64_t i) {
+    const Lattice& lat = q.lattice;
+    const int nn = lat.node_count();
+    nodes.resize(static_cast<std::size_t>(nn));
+    const double s0 = prefix[0].scale * q.u_scale(i);
+    for (int n = 0; n < nn; ++n)
+      nodes[static_cast<std::size_t>(n)] = {prefix[0].apply_point(q.u_node(i, n)),
+                                            s0 * q.node_templates[static_cast<std::size_t>(n)].radius};
+    const auto& pats = lat.definition().beams;
+    beam_start.resize(pats.size());
+    beam_end.resize(pats.size());
+    for (std::size_t p = 0; p < pats.size(); ++p) {
+      const BeamPattern& b = pats[p];
+      const SimilarityTransform& pe = prefix[static_cast<std::size_t>(po.of_pattern[p])];
+      beam_start[p] = {nodes[static_cast<std::size_t>(b.from)].center, s0 * q.beam_start_templates[p].radius};
+      beam_end[p] = {pe.apply_point(q.u_node(i + b.di, b.to)), pe.scale * q.u_scale(i + b.di) * q.beam_end_templates[p].radius};
+    }
+  }
+};
+
+Ball moved(const SimilarityTransform& t, const Ball& b) { return t.apply(b); }
+
 }  // namespace
 
-void visit_rows(const QueryState& q, Probe& probe) {
+// O(uv): every k-row (i, j, *) of every node and pattern. The node rows' templates and extents are
+// computed once per query and row; a beam row's extent is combined from the extents of its two end
+// nodes' rows (the end at k = dk is W'^dk of its row's template, so its extent is shifted by dk). A
+// ring of node rows j + dj serves the beams that reach into the next rows.
+void visit_rows(const QueryState& q, Probe& probe, bool reject) {
   const Lattice& lat = q.lattice;
   const Counts& c = lat.counts();
   const auto& patterns = lat.definition().beams;
   const RowMotion& W = q.plan.rows_w;
-  const PrefixOffsets po(lat);
-  std::vector<SimilarityTransform> prefix(po.offsets.size());
+  const QueryExtents qe = query_extents(W, probe.inflated);
+  const int nodes = lat.node_count();
   IndexRanges ks;
-  for (std::int64_t j = 0; j < c.v; ++j) {
-    for (std::size_t o = 0; o < po.offsets.size(); ++o)
-      prefix[o] = q.eval.row_prefix(j + po.offsets[o].first, po.offsets[o].second);
-    for (std::int64_t i = 0; i < c.u; ++i) {
-      // The row (i, j, *) of every node: template at k = 0.
-      const SimilarityTransform g0 = prefix[0] * q.eval.u().at(i);
-      for (int n = 0; n < lat.node_count(); ++n) {
-        steady_row_ranges(W, RowTemplate::ball(q.eval.node_ball(g0, n)), full(0, c.w), probe.inflated, ks);
-        for (const IndexRange& r : ks.ranges())
-          for (std::int64_t k = r.lo; k <= r.hi; ++k)
-            if (!probe.ball(i, j, k, n)) return;
+  if (W.kind() == SimilarityKind::Identity) {
+    // Every k-row is one repeated element: test its template (k = 0) exactly.
+    for (std::int64_t j = 0; j < c.v; ++j)
+      for (std::int64_t i = 0; i < c.u; ++i) {
+        for (int n = 0; n < nodes; ++n) {
+          steady_row_ranges(W, qe, RowTemplate::ball(q.eval.node_ball(i, j, 0, n)), full(0, c.w), ks);
+          for (const IndexRange& r : ks.ranges())
+            for (std::int64_t k = r.lo; k <= r.hi; ++k)
+              if (!probe.ball(i, j, k, n)) return;
+        }
+        for (int p = 0; p < static_cast<int>(patterns.size()); ++p) {
+          const IndexBlock& s = q.pattern_starts[static_cast<std::size_t>(p)];
+          if (i < s.i0 || i >= s.i1 || j < s.j0 || j >= s.j1) continue;
+          const BeamGeometry g = q.eval.beam(i, j, s.k0, p);
+          steady_row_ranges(W, qe, RowTemplate::beam(g.start, g.end), full(s.k0, s.k1), ks);
+          for (const IndexRange& r : ks.ranges())
+            for (std::int64_t k = r.lo; k <= r.hi; ++k)
+              if (!probe.beam(i, j, k, p)) return;
+        }
       }
-      for (int p = 0; p < static_cast<int>(patterns.size()); ++p) {
-        const IndexBlock& s = q.pattern_starts[static_cast<std::size_t>(p)];
-        if (i < s.i0 || i >= s.i1 || j < s.j0 || j >= s.j1) continue;
-        const BeamPattern& b = patterns[static_cast<std::size_t>(p)];
-        const SimilarityTransform g1 = prefix[static_cast<std::size_t>(po.of_pattern[static_cast<std::size_t>(p)])] *
-                                       q.eval.u().at(i + b.di);
-        const BeamGeometry t = q.eval.beam_from_nodes(q.eval.node_ball(g0, b.from), q.eval.node_ball(g1, b.to), p);
-        steady_row_ranges(W, RowTemplate::beam(t.start, t.end), full(s.k0, s.k1), probe.inflated, ks);
+    return;
+  }
+  const auto& maps = W.maps();
+  const std::size_t M = maps.size();
+  std::int64_t dj_lo = 0, dj_hi = 0;
+  for (const BeamPattern& b : patterns) {
+    dj_lo = std::min<std::int64_t>(dj_lo, b.dj);
+    dj_hi = std::max<std::int64_t>(dj_hi, b.dj);
+  }
+  const std::int64_t slots = dj_hi - dj_lo + 1;
+  const std::size_t per_row = static_cast<std::size_t>(c.u * nodes);
+  thread_local std::vector<Ball> ring_balls;
+  thread_local std::vector<Extent> ring_extents;
+  thread_local std::vector<char> ring_ready;  // extents computed (lazily: rejected rows may not need them)
+  ring_balls.resize(static_cast<std::size_t>(slots) * per_row);
+  ring_extents.resize(static_cast<std::size_t>(slots) * per_row * M);
+  ring_ready.assign(static_cast<std::size_t>(slots) * per_row, 0);
+  const RowInvariant invariant(W, probe.inflated);
+  auto extents = [&](std::size_t x) {
+    Extent* e = &ring_extents[x * M];
+    if (!ring_ready[x]) {
+      for (std::size_t m = 0; m < M; ++m) e[m] = maps[m].extent(ring_balls[x]);
+      ring_ready[x] = 1;
+    }
+    return e;
+  };
+  auto slot_of = [&](std::int64_t j) { return static_cast<std::size_t>(((j % slots) + slots) % slots); };
+  auto at = [&](std::int64_t i, std::int64_t j, int n) { return slot_of(j) * per_row + static_cast<std::size_t>(i * nodes + n); };
+
+  // Node rows of one j: templates, extents, candidates.
+  auto node_row = [&](std::int64_t j) {
+    const SimilarityTransform prefix = q.eval.row_prefix(j, 0);
+    for (std::int64_t i = 0; i < c.u; ++i) {
+      const double s0 = prefix.scale * q.u_scale(i);
+      for (int n = 0; n < nodes; ++n) {
+        const std::size_t x = at(i, j, n);
+        Ball& b = ring_balls[x];
+        b = {prefix.apply_point(q.u_node(i, n)), s0 * q.node_templates[static_cast<std::size_t>(n)].radius};
+        ring_ready[x] = 0;
+        if (reject && !invariant.may_meet(b)) continue;
+        steady_row_ranges(W, qe, extents(x), full(0, c.w), ks);
         for (const IndexRange& r : ks.ranges())
           for (std::int64_t k = r.lo; k <= r.hi; ++k)
-            if (!probe.beam(i, j, k, p)) return;
+            if (!probe.ball_near(q.world_w.at(k).apply(b), i, j, k, n)) return false;
+      }
+    }
+    return true;
+  };
+
+  std::vector<Extent> te(M), eb(M);
+  std::int64_t computed = -1;
+  for (std::int64_t j = 0; j < c.v; ++j) {
+    for (std::int64_t jj = computed + 1; jj <= std::min(c.v - 1, j + dj_hi); ++jj)
+      if (!node_row(jj)) return;
+    computed = std::max(computed, std::min(c.v - 1, j + dj_hi));
+    for (int p = 0; p < static_cast<int>(patterns.size()); ++p) {
+      const IndexBlock& s = q.pattern_starts[static_cast<std::size_t>(p)];
+      if (j < s.j0 || j >= s.j1) continue;
+      const BeamPattern& bp = patterns[static_cast<std::size_t>(p)];
+      const SimilarityTransform shift = q.world_w.at(bp.dk);
+      for (std::int64_t i = s.i0; i < s.i1; ++i) {
+        const std::size_t xa = at(i, j, bp.from), xb = at(i + bp.di, j + bp.dj, bp.to);
+        const Ball& a = ring_balls[xa];
+        const Ball b = shift.apply(ring_balls[xb]);
+        if (reject && !invariant.may_meet(a, b)) continue;
+        const Extent* ea = extents(xa);
+        const Extent* ebn = extents(xb);
+        for (std::size_t m = 0; m < M; ++m) {
+          eb[m] = maps[m].shifted(ebn[m], static_cast<double>(bp.dk));
+          te[m] = maps[m].combine(ea[m], eb[m], a, b);
+        }
+        steady_row_ranges(W, qe, te.data(), full(s.k0, s.k1), ks);
+        for (const IndexRange& r : ks.ranges())
+          for (std::int64_t k = r.lo; k <= r.hi; ++k) {
+            const SimilarityTransform wk = q.world_w.at(k);
+            if (!probe.beam_near(wk.apply(a), wk.apply(b), i, j, k, p)) return;
+          }
       }
     }
   }
 }
 
-void visit_slabs(const QueryState& q, Probe& probe) {
+namespace {
+
+// The first-slab prefixes G W^dk V^dj for every pattern offset, for templates at (i, 0, 0).
+std::vector<SimilarityTransform> slab_prefixes(const QueryState& q, const PrefixOffsets& po) {
+  std::vector<SimilarityTransform> prefix(po.offsets.size());
+  for (std::size_t o = 0; o < po.offsets.size(); ++o)
+    prefix[o] = q.eval.row_prefix(po.offsets[o].first, po.offsets[o].second);
+  return prefix;
+}
+
+// Tests the (j, k) candidates of one kind in slab i: elements W'^k V'^j of the slab's template.
+template <class Test>
+bool test_slab(const QueryState& q, const IndexRanges& js, const IndexRanges& ks, const Ball& a, const Ball* b,
+               Test&& test) {
+  for (const IndexRange& rj : js.ranges())
+    for (std::int64_t j = rj.lo; j <= rj.hi; ++j) {
+      const SimilarityTransform vj = q.world_v.at(j);
+      const Ball va = moved(vj, a);
+      const Ball vb = b ? moved(vj, *b) : va;
+      for (const IndexRange& rk : ks.ranges())
+        for (std::int64_t k = rk.lo; k <= rk.hi; ++k) {
+          const SimilarityTransform wk = q.world_w.at(k);
+          if (!test(j, k, moved(wk, va), moved(wk, vb))) return false;
+        }
+    }
+  return true;
+}
+
+}  // namespace
+
+void visit_slabs(const QueryState& q, Probe& probe, bool reject) {
   const Lattice& lat = q.lattice;
   const Counts& c = lat.counts();
   const auto& patterns = lat.definition().beams;
   const RowMotion& V = q.plan.slabs_v;
   const RowMotion& W = q.plan.slabs_w;
+  const QueryExtents qv = query_extents(V, probe.inflated), qw = query_extents(W, probe.inflated);
+  const PrefixOffsets po(lat);
+  const std::vector<SimilarityTransform> prefix = slab_prefixes(q, po);
+  GroupTemplates t;
   IndexRanges js, ks;
-  // The (j, k) candidates of a template at (i, 0, 0): the product of its V- and W-ranges.
-  auto product = [&](const RowTemplate& t, const IndexRange& j_rows, const IndexRange& k_rows, auto&& test) {
-    steady_row_ranges(V, t, j_rows, probe.inflated, js);
-    if (js.empty()) return true;
-    steady_row_ranges(W, t, k_rows, probe.inflated, ks);
-    for (const IndexRange& rj : js.ranges())
-      for (std::int64_t j = rj.lo; j <= rj.hi; ++j)
-        for (const IndexRange& rk : ks.ranges())
-          for (std::int64_t k = rk.lo; k <= rk.hi; ++k)
-            if (!test(j, k)) return false;
+  // The direction without a rotation map first: its range is cheaper and often empty.
+  const bool w_first = W.rotates() && !V.rotates() ? false : !W.rotates();
+  auto both = [&](const RowTemplate& t, const IndexRange& j_rows, const IndexRange& k_rows) {
+    if (w_first) {
+      steady_row_ranges(W, qw, t, k_rows, ks);
+      if (ks.empty()) return false;
+      steady_row_ranges(V, qv, t, j_rows, js);
+      return !js.empty();
+    }
+    steady_row_ranges(V, qv, t, j_rows, js);
+    if (js.empty()) return false;
+    steady_row_ranges(W, qw, t, k_rows, ks);
+    return !ks.empty();
+  };
+  // Slab rejection: a map of U that V and W leave unchanged takes on the whole slab i the values it
+  // takes on the slab's template, so the query must overlap those.
+  const std::vector<NormalizedMap>& slab_maps = q.plan.constant_u.maps();
+  auto slab_may_meet = [&](const Ball& a, const Ball* b) {
+    if (!reject) return true;
+    Ball bound = a;
+    if (b) {  // the beam lies in the ball about its axis midpoint reaching both balls
+      bound.center = 0.5 * (a.center + b->center);
+      bound.radius = 0.5 * glm::length(b->center - a.center) + std::max(a.radius, b->radius);
+    }
+    for (const NormalizedMap& m : slab_maps)
+      if (!m.ranges_overlap(probe.inflated, bound)) return false;
     return true;
   };
   for (std::int64_t i = 0; i < c.u; ++i) {
-    const SimilarityTransform g0 = q.eval.group(i, 0, 0);
+    t.fill(q, po, prefix, i);
     for (int n = 0; n < lat.node_count(); ++n) {
-      const RowTemplate t = RowTemplate::ball(q.eval.node_ball(g0, n));
-      if (!product(t, full(0, c.v), full(0, c.w), [&](std::int64_t j, std::int64_t k) { return probe.ball(i, j, k, n); }))
+      const Ball& tb = t.nodes[static_cast<std::size_t>(n)];
+      if (!slab_may_meet(tb, nullptr)) continue;
+      if (!both(RowTemplate::ball(tb), full(0, c.v), full(0, c.w))) continue;
+      if (!test_slab(q, js, ks, tb, nullptr, [&](std::int64_t j, std::int64_t k, const Ball& e, const Ball&) {
+            return probe.ball_near(e, i, j, k, n);
+          }))
         return;
     }
     for (int p = 0; p < static_cast<int>(patterns.size()); ++p) {
       const IndexBlock& s = q.pattern_starts[static_cast<std::size_t>(p)];
       if (i < s.i0 || i >= s.i1) continue;
-      const BeamPattern& b = patterns[static_cast<std::size_t>(p)];
-      const BeamGeometry g = q.eval.beam_from_nodes(q.eval.node_ball(g0, b.from),
-                                                    q.eval.node_ball(i + b.di, b.dj, b.dk, b.to), p);
-      if (!product(RowTemplate::beam(g.start, g.end), full(s.j0, s.j1), full(s.k0, s.k1),
-                   [&](std::int64_t j, std::int64_t k) { return probe.beam(i, j, k, p); }))
+      const Ball& a = t.beam_start[static_cast<std::size_t>(p)];
+      const Ball& b = t.beam_end[static_cast<std::size_t>(p)];
+      if (!slab_may_meet(a, &b)) continue;
+      if (!both(RowTemplate::beam(a, b), full(s.j0, s.j1), full(s.k0, s.k1))) continue;
+      if (!test_slab(q, js, ks, a, &b, [&](std::int64_t j, std::int64_t k, const Ball& ea, const Ball& eb) {
+            return probe.beam_near(ea, eb, i, j, k, p);
+          }))
         return;
     }
   }
@@ -111,45 +273,71 @@ void visit_constant(const QueryState& q, Probe& probe) {
   const Counts& c = lat.counts();
   const auto& patterns = lat.definition().beams;
   const QueryPlan& plan = q.plan;
+  const RowMotion& V = plan.constant_per_slab ? plan.slabs_v : plan.constant_v;
+  const RowMotion& W = plan.constant_per_slab ? plan.slabs_w : plan.constant_w;
+  const QueryExtents qu = query_extents(plan.constant_u, probe.inflated);
+  const QueryExtents qv = query_extents(V, probe.inflated), qw = query_extents(W, probe.inflated);
+  const PrefixOffsets po(lat);
+  const std::vector<SimilarityTransform> prefix = slab_prefixes(q, po);
+  GroupTemplates t0, ti;
+  t0.fill(q, po, prefix, 0);
   IndexRanges is, js, ks;
-  // The candidates of one kind: the i-range of the template at (0,0,0), then the j- and k-ranges of the
-  // same template, or of the template at (i,0,0) for each candidate i.
-  auto candidates = [&](const RowTemplate& t0, auto&& slab_template, const IndexBlock& rows, auto&& test) {
-    steady_row_ranges(plan.constant_u, t0, full(rows.i0, rows.i1), probe.inflated, is);
+  // One kind: the i-range of its template at (0,0,0); then per candidate i the j- and k-ranges of the
+  // same template (the paper's O(1)) or of the slab's template at (i,0,0), and the elements
+  // W'^k V'^j of the slab's template U'^i T0 (or of T_i).
+  auto kind = [&](const Ball& a0, const Ball* b0, const IndexBlock& rows, auto&& slab_template, auto&& test) {
+    const RowTemplate r0 = b0 ? RowTemplate::beam(a0, *b0) : RowTemplate::ball(a0);
+    steady_row_ranges(plan.constant_u, qu, r0, full(rows.i0, rows.i1), is);
     if (is.empty()) return true;
-    const RowMotion& V = plan.constant_per_slab ? plan.slabs_v : plan.constant_v;
-    const RowMotion& W = plan.constant_per_slab ? plan.slabs_w : plan.constant_w;
+    if (!plan.constant_per_slab) {
+      steady_row_ranges(V, qv, r0, full(rows.j0, rows.j1), js);
+      if (js.empty()) return true;
+      steady_row_ranges(W, qw, r0, full(rows.k0, rows.k1), ks);
+    }
     for (const IndexRange& ri : is.ranges())
       for (std::int64_t i = ri.lo; i <= ri.hi; ++i) {
-        if (plan.constant_per_slab || i == ri.lo) {
-          const RowTemplate t = plan.constant_per_slab ? slab_template(i) : t0;
-          steady_row_ranges(V, t, full(rows.j0, rows.j1), probe.inflated, js);
-          steady_row_ranges(W, t, full(rows.k0, rows.k1), probe.inflated, ks);
+        Ball a, b;
+        if (plan.constant_per_slab) {
+          slab_template(i, a, b);
+          const RowTemplate r = b0 ? RowTemplate::beam(a, b) : RowTemplate::ball(a);
+          steady_row_ranges(V, qv, r, full(rows.j0, rows.j1), js);
+          if (js.empty()) continue;
+          steady_row_ranges(W, qw, r, full(rows.k0, rows.k1), ks);
+        } else {
+          const SimilarityTransform ui = q.world_u.at(i);
+          a = moved(ui, a0);
+          if (b0) b = moved(ui, *b0);
         }
-        for (const IndexRange& rk : ks.ranges())
-          for (std::int64_t k = rk.lo; k <= rk.hi; ++k)
-            for (const IndexRange& rj : js.ranges())
-              for (std::int64_t j = rj.lo; j <= rj.hi; ++j)
-                if (!test(i, j, k)) return false;
+        if (!test_slab(q, js, ks, a, b0 ? &b : nullptr,
+                       [&](std::int64_t j, std::int64_t k, const Ball& ea, const Ball& eb) { return test(i, j, k, ea, eb); }))
+          return false;
       }
     return true;
   };
-  const IndexBlock all{0, c.u, 0, c.v, 0, c.w};
   for (int n = 0; n < lat.node_count(); ++n) {
-    auto templ = [&](std::int64_t i) { return RowTemplate::ball(q.eval.node_ball(i, 0, 0, n)); };
-    if (!candidates(templ(0), templ, all,
-                    [&](std::int64_t i, std::int64_t j, std::int64_t k) { return probe.ball(i, j, k, n); }))
+    const Ball& a0 = t0.nodes[static_cast<std::size_t>(n)];
+    if (!kind(a0, nullptr, IndexBlock{0, c.u, 0, c.v, 0, c.w},
+              [&](std::int64_t i, Ball& a, Ball&) {
+                ti.fill(q, po, prefix, i);
+                a = ti.nodes[static_cast<std::size_t>(n)];
+              },
+              [&](std::int64_t i, std::int64_t j, std::int64_t k, const Ball& e, const Ball&) {
+                return probe.ball_near(e, i, j, k, n);
+              }))
       return;
   }
   for (int p = 0; p < static_cast<int>(patterns.size()); ++p) {
-    const BeamPattern& b = patterns[static_cast<std::size_t>(p)];
-    auto templ = [&](std::int64_t i) {
-      const BeamGeometry g = q.eval.beam_from_nodes(q.eval.node_ball(i, 0, 0, b.from),
-                                                    q.eval.node_ball(i + b.di, b.dj, b.dk, b.to), p);
-      return RowTemplate::beam(g.start, g.end);
-    };
-    if (!candidates(templ(0), templ, q.pattern_starts[static_cast<std::size_t>(p)],
-                    [&](std::int64_t i, std::int64_t j, std::int64_t k) { return probe.beam(i, j, k, p); }))
+    const Ball& a0 = t0.beam_start[static_cast<std::size_t>(p)];
+    const Ball& b0 = t0.beam_end[static_cast<std::size_t>(p)];
+    if (!kind(a0, &b0, q.pattern_starts[static_cast<std::size_t>(p)],
+              [&](std::int64_t i, Ball& a, Ball& b) {
+                ti.fill(q, po, prefix, i);
+                a = ti.beam_start[static_cast<std::size_t>(p)];
+                b = ti.beam_end[static_cast<std::size_t>(p)];
+              },
+              [&](std::int64_t i, std::int64_t j, std::int64_t k, const Ball& ea, const Ball& eb) {
+                return probe.beam_near(ea, eb, i, j, k, p);
+              }))
       return;
   }
 }

@@ -63,8 +63,12 @@ struct Tally {
 
 void compare_paths(const Lattice& lat, std::mt19937_64& rng, int queries, Tally& t, const std::string& label) {
   const LatticeQuery lq(lat);
-  std::vector<QueryMethod> methods = {QueryMethod::Naive, QueryMethod::Rows, QueryMethod::Blocks, QueryMethod::Auto};
-  if (lq.plan().slabs_valid) methods.push_back(QueryMethod::Slabs);
+  std::vector<QueryMethod> methods = {QueryMethod::Naive, QueryMethod::Rows, QueryMethod::PaperRows,
+                                      QueryMethod::Blocks, QueryMethod::Auto};
+  if (lq.plan().slabs_valid) {
+    methods.push_back(QueryMethod::Slabs);
+    methods.push_back(QueryMethod::PaperSlabs);
+  }
   if (lq.plan().constant_valid) methods.push_back(QueryMethod::Constant);
   ++t.lattices;
   t.slabs += lq.plan().slabs_valid;

@@ -15,6 +15,10 @@
 //             and k-ranges (the paper's O(1)); otherwise j and k come per candidate slab as in Slabs.
 //   Blocks    beyond the paper: a hierarchy of index blocks with closed-form bounds (block_bounds.hpp),
 //             refined only where the query may be; any steady brick, ~O(log(uvw)) nodes visited.
+// Rows and Slabs reject whole rows and slabs before RangeFinder runs (row_invariant.hpp: functions the
+// row's motion keeps; for slabs, U's maps that V and W keep), which removes the paper's false positives
+// of queries inside a row's slab but far from it. PaperRows and PaperSlabs are the paper's algorithms
+// without that rejection, kept to reproduce its tables.
 //   Auto      Constant when it applies, Blocks otherwise.
 // The conditions of Slabs and Constant are detected numerically (kConditionTolerance) when the query
 // object is built. Detection is per map, not per direction: a direction keeps only the maps the other
@@ -38,9 +42,10 @@
 
 namespace steady {
 
-enum class QueryMethod { Auto, Naive, Rows, Slabs, Constant, Blocks };
+enum class QueryMethod { Auto, Naive, Rows, Slabs, Constant, Blocks, PaperRows, PaperSlabs };
 const char* to_string(QueryMethod method);
-// "auto", "naive", "rows", "slabs", "constant", "blocks"; throws InvalidInput naming `field` otherwise.
+// "auto", "naive", "rows", "slabs", "constant", "blocks", "rows-paper", "slabs-paper"; throws
+// InvalidInput naming `field` otherwise.
 QueryMethod query_method_from_string(const std::string& name, const std::string& field = "method");
 
 // An element that meets the query, with its geometry.

@@ -68,10 +68,13 @@ class IndexRanges {
 };
 
 // An interval of normalized map values. lo may be -inf and hi +inf (a dilation's fixed point inside the
-// shape); `full` marks a rotation extent that covers every angle (the axis meets the shape).
+// shape); `full` marks a rotation extent that covers every angle (the axis meets the shape). `near` is,
+// for the two dilation maps, the shape's smallest distance to the fixed point or line (0 when it
+// contains it): a beam's extent then needs its cone's nearest point only when that comes closer.
 struct Extent {
   double lo = 0.0, hi = 0.0;
   bool full = false;
+  double near = 0.0;
 };
 
 // One normalized map of a row motion.
@@ -95,6 +98,18 @@ struct NormalizedMap {
   // around the branch-0 value of the (start) ball's center.
   Extent extent(const Ball& ball) const;
   Extent extent(const Ball& a, const Ball& b) const;
+  // A beam's extent from its two balls' extents (ea of a, eb of b; eb may be the extent of b's
+  // preimage shifted by some k, any lift): the balls' union joined the short way for a rotation (full
+  // when that spans half a turn or more: the hull can then reach the axis), the union for a
+  // translation, and for the dilations the union extended to the cone's nearest point when that comes
+  // closer to F (or the line) than both balls. Equal to extent(a, b) up to the rotation case's
+  // conservative "full".
+  Extent combine(const Extent& ea, const Extent& eb, const Ball& a, const Ball& b) const;
+  // The extent of S^k(shape) from the shape's extent.
+  Extent shifted(const Extent& e, double k) const;
+  // Do the value ranges of two balls overlap? (Closed form in distances and angles, no logarithm; the
+  // test a map that other motions leave unchanged gives for "same index".)
+  bool ranges_overlap(const Ball& a, const Ball& b) const;
   // The rotation period 2 pi / theta in map units (rotation maps only).
   double period() const;
 };
@@ -172,5 +187,19 @@ void rotation_candidate_ranges(const Extent& query, const Extent& templ, double 
 // (a superset of the exact answer, usually a few indices). `out` is cleared, then filled normalized.
 void steady_row_ranges(const RowMotion& motion, const RowTemplate& templ, const IndexRange& rows, const Ball& query,
                        IndexRanges& out);
+
+// The query's extents under a motion's maps, computed once and reused for every row of that motion
+// (a lattice query runs RangeFinder on up to u v rows with one query ball).
+struct QueryExtents {
+  Ball query;
+  std::vector<Extent> extents;  // one per map of the motion, in order
+};
+QueryExtents query_extents(const RowMotion& motion, const Ball& query);
+void steady_row_ranges(const RowMotion& motion, const QueryExtents& query, const RowTemplate& templ,
+                       const IndexRange& rows, IndexRanges& out);
+// The same from the template's extents (one per map of the motion, e.g. combined from cached ball
+// extents); the motion must not be the identity (that case needs the template's geometry).
+void steady_row_ranges(const RowMotion& motion, const QueryExtents& query, const Extent* templ_extents,
+                       const IndexRange& rows, IndexRanges& out);
 
 }  // namespace steady

@@ -1,0 +1,74 @@
+// Dissertation Table 7.2 / RangeFinder section 7.3: 100 random ball-interference queries (centers uniform
+// in the lattice's bounding box, radii 90-110% of the mean ball radius), single thread, on the three
+// benchmark lattices (bench_lattices.hpp), naive against every accelerated path that applies, in one run.
+// Times are medians of repeats; every path must return the same elements as the naive one.
+#include <cstdio>
+
+#include "bench_lattices.hpp"
+#include "steady/lattice_query.hpp"
+
+using namespace bench;
+
+namespace {
+
+struct PaperRow {
+  const char* lattice;
+  double naive, uv, u, one;  // seconds per 100 BIQs, dissertation Table 7.2 (-1: not applicable)
+};
+
+long hits_of(const LatticeQuery& lq, const std::vector<Ball>& queries, QueryMethod m) {
+  long h = 0;
+  for (const Ball& q : queries) {
+    const BallQueryResult r = lq.query_ball(q, m);
+    h += static_cast<long>(r.balls.size() + r.beams.size());
+  }
+  return h;
+}
+
+void run(const char* name, const Lattice& lat, const PaperRow& paper, int repeats_naive, int repeats_fast) {
+  const LatticeQuery lq(lat);
+  const std::vector<Ball> queries = paper_queries(lat, 100, 42);
+  std::printf("\n%s: %lld x %lld x %lld groups, %lld balls, %lld beams\n  plan: %s\n", name,
+              static_cast<long long>(lat.counts().u), static_cast<long long>(lat.counts().v),
+              static_cast<long long>(lat.counts().w), static_cast<long long>(lat.ball_count()),
+              static_cast<long long>(lat.beam_count()), lq.plan().describe().c_str());
+  long naive_hits = 0;
+  const double naive = median_seconds(repeats_naive, [&] { naive_hits = hits_of(lq, queries, QueryMethod::Naive); });
+  std::printf("  %-26s %12s %10s %10s %14s %12s\n", "method (100 BIQs, 1 thread)", "seconds", "speed-up", "hits",
+              "paper seconds", "paper x");
+  std::printf("  %-26s %12.4f %10s %10ld %14.4g %12s\n", "naive O(uvw)", naive, "1", naive_hits, paper.naive, "1");
+  struct Path {
+    const char* label;
+    QueryMethod method;
+    double paper_seconds;
+  };
+  const Path paths[] = {{"rows O(uv)", QueryMethod::Rows, paper.uv},
+                        {"slabs O(u)", QueryMethod::Slabs, paper.u},
+                        {"constant O(1)", QueryMethod::Constant, paper.one},
+                        {"blocks (hierarchical)", QueryMethod::Blocks, -1}};
+  for (const Path& p : paths) {
+    if (p.method == QueryMethod::Slabs && !lq.plan().slabs_valid) continue;
+    if (p.method == QueryMethod::Constant && !lq.plan().constant_valid) continue;
+    long hits = 0;
+    const double t = median_seconds(repeats_fast, [&] { hits = hits_of(lq, queries, p.method); });
+    char paper_x[32] = "-", paper_s[32] = "-";
+    if (p.paper_seconds > 0) {
+      std::snprintf(paper_s, sizeof paper_s, "%.4g", p.paper_seconds);
+      std::snprintf(paper_x, sizeof paper_x, "%.0fx", paper.naive / p.paper_seconds);
+    }
+    std::printf("  %-26s %12.6f %9.0fx %10ld %14s %12s%s\n", p.label, t, naive / t, hits, paper_s, paper_x,
+                hits == naive_hits ? "" : "   MISMATCH");
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const bool quick = has_flag(argc, argv, "--quick");
+  std::printf("Ball-interference queries: this machine vs dissertation Table 7.2 (i7-7700K, Java, 1 thread)\n");
+  const int rn = quick ? 1 : 3, rf = quick ? 3 : 7;
+  run("regular BCC", regular_fine(), {"regular", 55.2, 1.60, 0.0558, 0.00586}, rn, rf);
+  run("cylindrical BCC", cylindrical_fine(), {"cylindrical", 259, 2.72, 0.0554, -1}, rn, rf);
+  run("bent-twisted-tapered", bent_twisted_tapered(), {"fig 7.10", 167, 3.68, -1, -1}, rn, rf);
+  return 0;
+}
