@@ -23,6 +23,7 @@ struct Flow {
   detail::PowerTable powers;
   std::int64_t lo = 0;  // first index covered
   std::vector<double> arc;  // arc[len - 1] = A(sigma, (len - 1) / 2)
+  std::vector<double> scale;  // scale[t - lo] = e^(sigma t)
 
   Flow(const Similarity& step, std::int64_t first, std::int64_t last)
       : sigma(step.log_scale()),
@@ -33,6 +34,15 @@ struct Flow {
     const std::int64_t lengths = std::min<std::int64_t>(last - first + 1, detail::kMaxPowerTableEntries);
     arc.resize(static_cast<std::size_t>(std::max<std::int64_t>(lengths, 1)));
     for (std::size_t len = 1; len <= arc.size(); ++len) arc[len - 1] = arc_factor(0.5 * static_cast<double>(len - 1));
+    scale.resize(static_cast<std::size_t>(lengths));
+    for (std::size_t t = 0; t < scale.size(); ++t) scale[t] = std::exp(sigma * static_cast<double>(first + static_cast<std::int64_t>(t)));
+  }
+  // The largest scale s^t over t in [t0, t1].
+  double max_scale(std::int64_t t0, std::int64_t t1) const {
+    const std::int64_t t = sigma > 0.0 ? t1 : t0;
+    const std::int64_t slot = t - lo;
+    if (slot >= 0 && slot < static_cast<std::int64_t>(scale.size())) return scale[static_cast<std::size_t>(slot)];
+    return std::exp(sigma * static_cast<double>(t));
   }
   double arc_factor(double half) const {
     const double a = std::abs(sigma);
@@ -44,10 +54,6 @@ struct Flow {
   }
   // |xi(y)|: the speed of the flow at y.
   double speed(const Vec3& y) const { return glm::length(sigma * y + glm::cross(omega, y) + velocity); }
-  // ln of the largest scale s^t over t in [t0, t1].
-  double max_log_scale(std::int64_t t0, std::int64_t t1) const {
-    return sigma * static_cast<double>(sigma > 0.0 ? t1 : t0);
-  }
 };
 
 }  // namespace
@@ -80,18 +86,17 @@ struct BlockBounds::Impl {
   BlockBound bound(const Vec3& point, double radius, const IndexBlock& b) const {
     // Block centers as half-integers: twice the center index.
     const std::int64_t ti = b.i0 + b.i1 - 1, tj = b.j0 + b.j1 - 1, tk = b.k0 + b.k1 - 1;
-    const Vec3 p0 = u.powers.at_half(ti).apply_point(point);
-    const Vec3 q0 = v.powers.at_half(tj).apply_point(p0);
-    const Vec3 r0 = w.powers.at_half(tk).apply_point(q0);
-    const double log_w = w.max_log_scale(b.k0, b.k1 - 1), log_v = v.max_log_scale(b.j0, b.j1 - 1),
-                 log_u = u.max_log_scale(b.i0, b.i1 - 1);
-    const double sw = std::exp(log_w), swv = std::exp(log_w + log_v);
+    const Vec3 p0 = u.powers.apply_half(ti, point);
+    const Vec3 q0 = v.powers.apply_half(tj, p0);
+    const Vec3 r0 = w.powers.apply_half(tk, q0);
+    const double sw = w.max_scale(b.k0, b.k1 - 1), swv = sw * v.max_scale(b.j0, b.j1 - 1);
+    const double swvu = swv * u.max_scale(b.i0, b.i1 - 1);
     BlockBound out;
     out.spread[2] = g_scale * w.speed(r0) * w.arc_for(b.k1 - b.k0);
     out.spread[1] = g_scale * sw * v.speed(q0) * v.arc_for(b.j1 - b.j0);
     out.spread[0] = g_scale * swv * u.speed(p0) * u.arc_for(b.i1 - b.i0);
     out.ball.center = g.apply_point(r0);
-    out.ball.radius = out.spread[0] + out.spread[1] + out.spread[2] + radius * g_scale * std::exp(log_w + log_v + log_u);
+    out.ball.radius = out.spread[0] + out.spread[1] + out.spread[2] + radius * g_scale * swvu;
     return out;
   }
 };

@@ -79,10 +79,23 @@ void FilteredLattice::beam_mask_from(const std::uint8_t* balls, std::uint8_t* ou
   const Lattice& lat = *lattice_;
   const Counts& c = lat.counts();
   const auto& patterns = lat.definition().beams;
+  const std::int64_t nodes = lat.node_count();
+  const bool dense = lat.definition().omitted.empty();
   for (int p = 0; p < static_cast<int>(patterns.size()); ++p) {
     const BeamPattern& b = patterns[static_cast<std::size_t>(p)];
     tbb::parallel_for(std::int64_t(0), c.v * c.w, [&](std::int64_t r) {
       const std::int64_t j = r % c.v, k = r / c.v;
+      if (dense) {
+        // Nothing omitted: a row's beams are consecutive, and ball indices are the linear node indices.
+        const std::int64_t i0 = std::max<std::int64_t>(0, -b.di), i1 = std::min<std::int64_t>(c.u, c.u - b.di);
+        if (i1 <= i0) return;
+        const std::int64_t first = lat.beam_index(BeamId{i0, j, k, p});
+        if (first < 0) return;
+        const std::int64_t s0 = ((k * c.v + j) * c.u + i0) * nodes + b.from;
+        const std::int64_t e0 = (((k + b.dk) * c.v + j + b.dj) * c.u + i0 + b.di) * nodes + b.to;
+        for (std::int64_t i = 0; i < i1 - i0; ++i) out[first + i] = balls[s0 + i * nodes] && balls[e0 + i * nodes] ? 1 : 0;
+        return;
+      }
       for (std::int64_t i = 0; i < c.u; ++i) {
         const std::int64_t x = lat.beam_index(BeamId{i, j, k, p});
         if (x < 0) continue;

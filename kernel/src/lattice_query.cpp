@@ -32,6 +32,10 @@ QueryMethod query_method_from_string(const std::string& name, const std::string&
 }
 
 void validate_query_ball(const Ball& query, const std::string& field) {
+  // The common case without building any message.
+  if (std::isfinite(query.center.x) && std::isfinite(query.center.y) && std::isfinite(query.center.z) &&
+      std::isfinite(query.radius) && query.radius >= 0.0)
+    return;
   for (int c = 0; c < 3; ++c) require_finite(query.center[c], field + ".center");
   require_finite(query.radius, field + ".radius");
   if (query.radius < 0.0) fail_input(field + ".radius", "must be >= 0 (got " + std::to_string(query.radius) + ")");
@@ -86,6 +90,15 @@ QueryState::QueryState(const Lattice& lat)
     }
   }
   (void)g;
+  prefix_offsets.emplace_back(0, 0);
+  for (const BeamPattern& b : lat.definition().beams) {
+    const std::pair<int, int> o(b.dj, b.dk);
+    auto it = std::find(prefix_offsets.begin(), prefix_offsets.end(), o);
+    if (it == prefix_offsets.end()) it = prefix_offsets.insert(prefix_offsets.end(), o);
+    pattern_prefix.push_back(static_cast<int>(it - prefix_offsets.begin()));
+  }
+  for (const auto& o : prefix_offsets) slab_prefixes.push_back(eval.row_prefix(o.first, o.second));
+  first_templates.fill(*this, slab_prefixes, 0);
   detect_plan(*this);
 }
 

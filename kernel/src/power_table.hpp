@@ -23,6 +23,13 @@ class PowerTable {
     if (slot >= 0 && slot < static_cast<std::int64_t>(table_.size())) return table_[static_cast<std::size_t>(slot)];
     return step_.power(0.5 * static_cast<double>(twice)).transform();
   }
+  // S^(twice / 2) applied to a point, without copying the tabulated transform.
+  Vec3 apply_half(std::int64_t twice, const Vec3& p) const {
+    const std::int64_t slot = twice - 2 * lo_;
+    if (slot >= 0 && slot < static_cast<std::int64_t>(table_.size()))
+      return table_[static_cast<std::size_t>(slot)].apply_point(p);
+    return step_.power(0.5 * static_cast<double>(twice)).transform().apply_point(p);
+  }
   const Similarity& step() const { return step_; }
 
  private:

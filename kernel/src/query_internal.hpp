@@ -10,6 +10,14 @@
 
 namespace steady::detail {
 
+// Templates of every node and pattern for one group (i, j, 0) given the row prefixes (G W^dk V^(j+dj)).
+struct QueryState;
+struct GroupTemplates {
+  std::vector<Ball> nodes;
+  std::vector<Ball> beam_start, beam_end;
+  void fill(const QueryState& q, const std::vector<SimilarityTransform>& prefix, std::int64_t i);
+};
+
 struct QueryState {
   const Lattice& lattice;
   ElementEvaluator eval;
@@ -29,6 +37,12 @@ struct QueryState {
   // (templates of rows and slabs are then one point transform away).
   std::vector<Vec3> u_nodes;
   std::vector<double> u_scales;
+  // The distinct (dj, dk) offsets of the patterns, (0, 0) first, each pattern's offset, and the prefixes
+  // G W^dk V^dj of the first slab (templates at (i, 0, 0) are one product away from them).
+  std::vector<std::pair<int, int>> prefix_offsets;
+  std::vector<int> pattern_prefix;
+  std::vector<SimilarityTransform> slab_prefixes;
+  GroupTemplates first_templates;  // the templates at (0, 0, 0)
   Vec3 u_node(std::int64_t i, int n) const {
     const std::int64_t slot = i + margin;
     if (slot >= 0 && slot < static_cast<std::int64_t>(u_scales.size()))
@@ -45,6 +59,26 @@ struct QueryState {
   // The inflated radius used for ranges and bounds (kQueryInflation, kQueryInflationPerStep).
   double inflation(const Ball& query) const;
 };
+
+inline void GroupTemplates::fill(const QueryState& q, const std::vector<SimilarityTransform>& prefix, std::int64_t i) {
+  const Lattice& lat = q.lattice;
+  const int nn = lat.node_count();
+  nodes.resize(static_cast<std::size_t>(nn));
+  const double s0 = prefix[0].scale * q.u_scale(i);
+  for (int n = 0; n < nn; ++n)
+    nodes[static_cast<std::size_t>(n)] = {prefix[0].apply_point(q.u_node(i, n)),
+                                          s0 * q.node_templates[static_cast<std::size_t>(n)].radius};
+  const auto& pats = lat.definition().beams;
+  beam_start.resize(pats.size());
+  beam_end.resize(pats.size());
+  for (std::size_t p = 0; p < pats.size(); ++p) {
+    const BeamPattern& b = pats[p];
+    const SimilarityTransform& pe = prefix[static_cast<std::size_t>(q.pattern_prefix[p])];
+    beam_start[p] = {nodes[static_cast<std::size_t>(b.from)].center, s0 * q.beam_start_templates[p].radius};
+    beam_end[p] = {pe.apply_point(q.u_node(i + b.di, b.to)),
+                   pe.scale * q.u_scale(i + b.di) * q.beam_end_templates[p].radius};
+  }
+}
 
 // Tests candidates exactly and reports hits to the sink.
 struct Probe {

@@ -13,48 +13,6 @@ namespace {
 
 IndexRange full(std::int64_t lo, std::int64_t hi_exclusive) { return {lo, hi_exclusive - 1}; }
 
-// The distinct (dj, dk) of the patterns, (0, 0) first: one row prefix each.
-struct PrefixOffsets {
-  std::vector<std::pair<int, int>> offsets;
-  std::vector<int> of_pattern;
-  explicit PrefixOffsets(const Lattice& lat) {
-    offsets.emplace_back(0, 0);
-    for (const BeamPattern& b : lat.definition().beams) {
-      const std::pair<int, int> o(b.dj, b.dk);
-      auto it = std::find(offsets.begin(), offsets.end(), o);
-      if (it == offsets.end()) {
-        offsets.push_back(o);
-        it = offsets.end() - 1;
-      }
-      of_pattern.push_back(static_cast<int>(it - offsets.begin()));
-    }
-  }
-};
-
-// Templates of every node and pattern for one group (i, j, 0) given the row prefixes (G W^dk V^(j+dj)).
-struct GroupTemplates {
-  std::vector<Ball> nodes;
-  std::vector<Ball> beam_start, beam_end;
-  void fill(const QueryState& q, const PrefixOffsets& po, const std::vector<SimilarityTransform>& prefix, std::int64_t i) {
-    const Lattice& lat = q.lattice;
-    const int nn = lat.node_count();
-    nodes.resize(static_cast<std::size_t>(nn));
-    const double s0 = prefix[0].scale * q.u_scale(i);
-    for (int n = 0; n < nn; ++n)
-      nodes[static_cast<std::size_t>(n)] = {prefix[0].apply_point(q.u_node(i, n)),
-                                            s0 * q.node_templates[static_cast<std::size_t>(n)].radius};
-    const auto& pats = lat.definition().beams;
-    beam_start.resize(pats.size());
-    beam_end.resize(pats.size());
-    for (std::size_t p = 0; p < pats.size(); ++p) {
-      const BeamPattern& b = pats[p];
-      const SimilarityTransform& pe = prefix[static_cast<std::size_t>(po.of_pattern[p])];
-      beam_start[p] = {nodes[static_cast<std::size_t>(b.from)].center, s0 * q.beam_start_templates[p].radius};
-      beam_end[p] = {pe.apply_point(q.u_node(i + b.di, b.to)), pe.scale * q.u_scale(i + b.di) * q.beam_end_templates[p].radius};
-    }
-  }
-};
-
 Ball moved(const SimilarityTransform& t, const Ball& b) { return t.apply(b); }
 
 }  // namespace
@@ -70,7 +28,7 @@ void visit_rows(const QueryState& q, Probe& probe, bool reject) {
   const RowMotion& W = q.plan.rows_w;
   const QueryExtents qe = query_extents(W, probe.inflated);
   const int nodes = lat.node_count();
-  IndexRanges ks;
+  thread_local IndexRanges ks;
   if (W.kind() == SimilarityKind::Identity) {
     // Every k-row is one repeated element: test its template (k = 0) exactly.
     for (std::int64_t j = 0; j < c.v; ++j)
@@ -175,14 +133,6 @@ void visit_rows(const QueryState& q, Probe& probe, bool reject) {
 
 namespace {
 
-// The first-slab prefixes G W^dk V^dj for every pattern offset, for templates at (i, 0, 0).
-std::vector<SimilarityTransform> slab_prefixes(const QueryState& q, const PrefixOffsets& po) {
-  std::vector<SimilarityTransform> prefix(po.offsets.size());
-  for (std::size_t o = 0; o < po.offsets.size(); ++o)
-    prefix[o] = q.eval.row_prefix(po.offsets[o].first, po.offsets[o].second);
-  return prefix;
-}
-
 // Tests the (j, k) candidates of one kind in slab i: elements W'^k V'^j of the slab's template.
 template <class Test>
 bool test_slab(const QueryState& q, const IndexRanges& js, const IndexRanges& ks, const Ball& a, const Ball* b,
@@ -210,10 +160,9 @@ void visit_slabs(const QueryState& q, Probe& probe, bool reject) {
   const RowMotion& V = q.plan.slabs_v;
   const RowMotion& W = q.plan.slabs_w;
   const QueryExtents qv = query_extents(V, probe.inflated), qw = query_extents(W, probe.inflated);
-  const PrefixOffsets po(lat);
-  const std::vector<SimilarityTransform> prefix = slab_prefixes(q, po);
-  GroupTemplates t;
-  IndexRanges js, ks;
+  const std::vector<SimilarityTransform>& prefix = q.slab_prefixes;
+  thread_local GroupTemplates t;
+  thread_local IndexRanges js, ks;
   // The direction without a rotation map first: its range is cheaper and often empty.
   const bool w_first = W.rotates() && !V.rotates() ? false : !W.rotates();
   auto both = [&](const RowTemplate& t, const IndexRange& j_rows, const IndexRange& k_rows) {
@@ -243,7 +192,7 @@ void visit_slabs(const QueryState& q, Probe& probe, bool reject) {
     return true;
   };
   for (std::int64_t i = 0; i < c.u; ++i) {
-    t.fill(q, po, prefix, i);
+    t.fill(q, prefix, i);
     for (int n = 0; n < lat.node_count(); ++n) {
       const Ball& tb = t.nodes[static_cast<std::size_t>(n)];
       if (!slab_may_meet(tb, nullptr)) continue;
@@ -277,11 +226,10 @@ void visit_constant(const QueryState& q, Probe& probe) {
   const RowMotion& W = plan.constant_per_slab ? plan.slabs_w : plan.constant_w;
   const QueryExtents qu = query_extents(plan.constant_u, probe.inflated);
   const QueryExtents qv = query_extents(V, probe.inflated), qw = query_extents(W, probe.inflated);
-  const PrefixOffsets po(lat);
-  const std::vector<SimilarityTransform> prefix = slab_prefixes(q, po);
-  GroupTemplates t0, ti;
-  t0.fill(q, po, prefix, 0);
-  IndexRanges is, js, ks;
+  const std::vector<SimilarityTransform>& prefix = q.slab_prefixes;
+  const GroupTemplates& t0 = q.first_templates;
+  thread_local GroupTemplates ti;
+  thread_local IndexRanges is, js, ks;
   // One kind: the i-range of its template at (0,0,0); then per candidate i the j- and k-ranges of the
   // same template (the paper's O(1)) or of the slab's template at (i,0,0), and the elements
   // W'^k V'^j of the slab's template U'^i T0 (or of T_i).
@@ -318,7 +266,7 @@ void visit_constant(const QueryState& q, Probe& probe) {
     const Ball& a0 = t0.nodes[static_cast<std::size_t>(n)];
     if (!kind(a0, nullptr, IndexBlock{0, c.u, 0, c.v, 0, c.w},
               [&](std::int64_t i, Ball& a, Ball&) {
-                ti.fill(q, po, prefix, i);
+                ti.fill(q, prefix, i);
                 a = ti.nodes[static_cast<std::size_t>(n)];
               },
               [&](std::int64_t i, std::int64_t j, std::int64_t k, const Ball& e, const Ball&) {
@@ -331,7 +279,7 @@ void visit_constant(const QueryState& q, Probe& probe) {
     const Ball& b0 = t0.beam_end[static_cast<std::size_t>(p)];
     if (!kind(a0, &b0, q.pattern_starts[static_cast<std::size_t>(p)],
               [&](std::int64_t i, Ball& a, Ball& b) {
-                ti.fill(q, po, prefix, i);
+                ti.fill(q, prefix, i);
                 a = ti.beam_start[static_cast<std::size_t>(p)];
                 b = ti.beam_end[static_cast<std::size_t>(p)];
               },

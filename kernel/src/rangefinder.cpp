@@ -321,6 +321,10 @@ RowMotion RowMotion::from(const SimilarityTransform& t) {
   return m;
 }
 
+void RowMotion::add_map(const NormalizedMap& map) {
+  if (maps_.size() < kMaxRowMaps) maps_.push_back(map);
+}
+
 const NormalizedMap* RowMotion::find(NormalizedMap::Type type) const {
   for (const NormalizedMap& m : maps_)
     if (m.type == type) return &m;
@@ -365,8 +369,7 @@ void rotation_candidate_ranges(const Extent& query, const Extent& templ, double 
 QueryExtents query_extents(const RowMotion& motion, const Ball& query) {
   QueryExtents q;
   q.query = query;
-  q.extents.reserve(motion.maps().size());
-  for (const NormalizedMap& m : motion.maps()) q.extents.push_back(m.extent(query));
+  for (std::size_t m = 0; m < motion.maps().size(); ++m) q.extents[m] = motion.maps()[m].extent(query);
   return q;
 }
 

@@ -29,6 +29,7 @@
 // Conservative by construction: extents are widened by a slack covering the rounding of logarithms,
 // angles and divisions (query_tolerance.hpp); callers inflate the query ball to cover the rounding of
 // the elements' own evaluation.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -76,6 +77,10 @@ struct Extent {
   bool full = false;
   double near = 0.0;
 };
+
+// A motion carries at most this many maps: its canonical two, plus the alternatives the lattice query
+// tries (one distance-to-a-line map per other direction, three dual projections for a translation).
+constexpr std::size_t kMaxRowMaps = 6;
 
 // One normalized map of a row motion.
 struct NormalizedMap {
@@ -132,7 +137,8 @@ class RowMotion {
   // motion with no map left yields the full range.
   const std::vector<NormalizedMap>& maps() const { return maps_; }
   const NormalizedMap* find(NormalizedMap::Type type) const;
-  void add_map(const NormalizedMap& map) { maps_.push_back(map); }
+  // Adds a map (ignored beyond kMaxRowMaps: fewer maps only loosen the ranges).
+  void add_map(const NormalizedMap& map);
   void remove_map(std::size_t index) { maps_.erase(maps_.begin() + static_cast<std::ptrdiff_t>(index)); }
   // For the identity every instance is the template, so RangeFinder tests the template itself. That is
   // only right when the template is the row's own element 0; paths that let one template stand in for
@@ -192,7 +198,7 @@ void steady_row_ranges(const RowMotion& motion, const RowTemplate& templ, const 
 // (a lattice query runs RangeFinder on up to u v rows with one query ball).
 struct QueryExtents {
   Ball query;
-  std::vector<Extent> extents;  // one per map of the motion, in order
+  std::array<Extent, kMaxRowMaps> extents;  // one per map of the motion, in order
 };
 QueryExtents query_extents(const RowMotion& motion, const Ball& query);
 void steady_row_ranges(const RowMotion& motion, const QueryExtents& query, const RowTemplate& templ,
