@@ -102,6 +102,18 @@ QueryState::QueryState(const Lattice& lat)
   detect_plan(*this);
 }
 
+namespace {
+thread_local std::vector<std::unique_ptr<Scratch>> g_scratch_pool;
+thread_local std::size_t g_scratch_depth = 0;
+}  // namespace
+
+ScratchLease::ScratchLease() {
+  if (g_scratch_depth == g_scratch_pool.size()) g_scratch_pool.push_back(std::make_unique<Scratch>());
+  scratch_ = g_scratch_pool[g_scratch_depth++].get();
+}
+
+ScratchLease::~ScratchLease() { --g_scratch_depth; }
+
 double QueryState::inflation(const Ball& query) const {
   const Counts& c = lattice.counts();
   const double steps = static_cast<double>(c.u) + static_cast<double>(c.v) + static_cast<double>(c.w);

@@ -27,12 +27,7 @@ constexpr std::int64_t kTightGroups = 64;
 // The per-kind mask is a 64-bit word: lattices with more nodes plus patterns test every kind in leaves.
 constexpr int kMaskKinds = 64;
 
-struct Entry {
-  IndexBlock block;
-  double spread[3];
-  double gap;             // distance from the query to the block's union ball (visit order)
-  std::uint64_t kinds;    // kinds that may meet the query (all ones when not narrowed)
-};
+using Entry = BlockEntry;
 
 }  // namespace
 
@@ -121,7 +116,8 @@ void visit_blocks(const QueryState& q, Probe& probe) {
     return true;
   };
 
-  thread_local std::vector<Entry> stack;
+  const ScratchLease scratch;
+  std::vector<Entry>& stack = scratch->stack;
   stack.clear();
   Entry root;
   if (!evaluate(lattice_block, ~std::uint64_t(0), root)) return;

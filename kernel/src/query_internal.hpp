@@ -80,6 +80,35 @@ inline void GroupTemplates::fill(const QueryState& q, const std::vector<Similari
   }
 }
 
+// Working memory of one query, reused between queries of a thread. A filter can run a query inside a
+// query (Lattice-in-Lattice), so each nesting depth leases its own.
+struct BlockEntry {
+  IndexBlock block;
+  double spread[3];
+  double gap;           // distance from the query to the block's union ball (visit order)
+  std::uint64_t kinds;  // kinds that may meet the query (all ones when not narrowed)
+};
+struct Scratch {
+  IndexRanges is, js, ks;
+  GroupTemplates templates;
+  std::vector<Ball> ring_balls;
+  std::vector<Extent> ring_extents;
+  std::vector<char> ring_ready;
+  std::vector<BlockEntry> stack;
+};
+class ScratchLease {
+ public:
+  ScratchLease();
+  ~ScratchLease();
+  ScratchLease(const ScratchLease&) = delete;
+  ScratchLease& operator=(const ScratchLease&) = delete;
+  Scratch& operator*() const { return *scratch_; }
+  Scratch* operator->() const { return scratch_; }
+
+ private:
+  Scratch* scratch_;
+};
+
 // Tests candidates exactly and reports hits to the sink.
 struct Probe {
   const QueryState& q;

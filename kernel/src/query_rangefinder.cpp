@@ -28,7 +28,8 @@ void visit_rows(const QueryState& q, Probe& probe, bool reject) {
   const RowMotion& W = q.plan.rows_w;
   const QueryExtents qe = query_extents(W, probe.inflated);
   const int nodes = lat.node_count();
-  thread_local IndexRanges ks;
+  const ScratchLease scratch;
+  IndexRanges& ks = scratch->ks;
   if (W.kind() == SimilarityKind::Identity) {
     // Every k-row is one repeated element: test its template (k = 0) exactly.
     for (std::int64_t j = 0; j < c.v; ++j)
@@ -60,9 +61,9 @@ void visit_rows(const QueryState& q, Probe& probe, bool reject) {
   }
   const std::int64_t slots = dj_hi - dj_lo + 1;
   const std::size_t per_row = static_cast<std::size_t>(c.u * nodes);
-  thread_local std::vector<Ball> ring_balls;
-  thread_local std::vector<Extent> ring_extents;
-  thread_local std::vector<char> ring_ready;  // extents computed (lazily: rejected rows may not need them)
+  std::vector<Ball>& ring_balls = scratch->ring_balls;
+  std::vector<Extent>& ring_extents = scratch->ring_extents;
+  std::vector<char>& ring_ready = scratch->ring_ready;  // extents computed (lazily: rejected rows may not need them)
   ring_balls.resize(static_cast<std::size_t>(slots) * per_row);
   ring_extents.resize(static_cast<std::size_t>(slots) * per_row * M);
   ring_ready.assign(static_cast<std::size_t>(slots) * per_row, 0);
@@ -161,8 +162,9 @@ void visit_slabs(const QueryState& q, Probe& probe, bool reject) {
   const RowMotion& W = q.plan.slabs_w;
   const QueryExtents qv = query_extents(V, probe.inflated), qw = query_extents(W, probe.inflated);
   const std::vector<SimilarityTransform>& prefix = q.slab_prefixes;
-  thread_local GroupTemplates t;
-  thread_local IndexRanges js, ks;
+  const ScratchLease scratch;
+  GroupTemplates& t = scratch->templates;
+  IndexRanges &js = scratch->js, &ks = scratch->ks;
   // The direction without a rotation map first: its range is cheaper and often empty.
   const bool w_first = W.rotates() && !V.rotates() ? false : !W.rotates();
   auto both = [&](const RowTemplate& t, const IndexRange& j_rows, const IndexRange& k_rows) {
@@ -228,8 +230,9 @@ void visit_constant(const QueryState& q, Probe& probe) {
   const QueryExtents qv = query_extents(V, probe.inflated), qw = query_extents(W, probe.inflated);
   const std::vector<SimilarityTransform>& prefix = q.slab_prefixes;
   const GroupTemplates& t0 = q.first_templates;
-  thread_local GroupTemplates ti;
-  thread_local IndexRanges is, js, ks;
+  const ScratchLease scratch;
+  GroupTemplates& ti = scratch->templates;
+  IndexRanges &is = scratch->is, &js = scratch->js, &ks = scratch->ks;
   // One kind: the i-range of its template at (0,0,0); then per candidate i the j- and k-ranges of the
   // same template (the paper's O(1)) or of the slab's template at (i,0,0), and the elements
   // W'^k V'^j of the slab's template U'^i T0 (or of T_i).

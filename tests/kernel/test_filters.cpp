@@ -99,6 +99,28 @@ TEST(Filters, LatticeInLatticeAndCascade) {
   EXPECT_GT(kept, 50);
   EXPECT_LT(kept, fine.ball_count());
   check_beams_follow_balls(*lil);
+  // Queries on the LiL filter each hit with a query on the coarse lattice, nested in the fine query:
+  // the answer must still be the unfiltered one restricted to the masks.
+  {
+    const auto beams = beams_of(*lil);
+    const LatticeQuery plain(fine);
+    int nonempty = 0;
+    for (std::int64_t x = 0; x < fine.ball_count(); x += 5) {
+      const Ball q{fine.ball(fine.ball_id(x)).center, 0.3};
+      for (QueryMethod m : {QueryMethod::Auto, QueryMethod::Rows, QueryMethod::Blocks, QueryMethod::Slabs}) {
+        const BallQueryResult all = plain.query_ball(q, m), got = FilteredLattice(fine, lattice_in_lattice(coarse), m).query_ball(q);
+        BallQueryResult expect;
+        for (auto b : all.balls)
+          if (balls[b]) expect.balls.push_back(b);
+        for (auto b : all.beams)
+          if (beams[b]) expect.beams.push_back(b);
+        EXPECT_EQ(got.balls, expect.balls) << x;
+        EXPECT_EQ(got.beams, expect.beams) << x;
+        nonempty += !expect.beams.empty();
+      }
+    }
+    EXPECT_GT(nonempty, 20);
+  }
   // Cascade: a finer lattice inside the LiL (materialized, so it is looked up rather than re-filtered).
   lil->materialize();
   const Lattice finer = test::regular_bcc({17, 17, 17}, 0.25);
