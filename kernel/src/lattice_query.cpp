@@ -100,6 +100,25 @@ QueryState::QueryState(const Lattice& lat)
   for (const auto& o : prefix_offsets) slab_prefixes.push_back(eval.row_prefix(o.first, o.second));
   first_templates.fill(*this, slab_prefixes, 0);
   detect_plan(*this);
+  auto extents = [](const RowMotion& m, const Ball& a, const Ball* b, std::array<Extent, kMaxRowMaps>& out) {
+    for (std::size_t x = 0; x < m.maps().size(); ++x) out[x] = b ? m.maps()[x].extent(a, *b) : m.maps()[x].extent(a);
+  };
+  for (std::size_t n = 0; n < first_templates.nodes.size(); ++n) {
+    TemplateExtents e;
+    extents(plan.constant_u, first_templates.nodes[n], nullptr, e.u);
+    extents(plan.constant_v, first_templates.nodes[n], nullptr, e.v);
+    extents(plan.constant_w, first_templates.nodes[n], nullptr, e.w);
+    constant_extents.push_back(e);
+  }
+  for (std::size_t p = 0; p < first_templates.beam_start.size(); ++p) {
+    TemplateExtents e;
+    const Ball& a = first_templates.beam_start[p];
+    const Ball& b = first_templates.beam_end[p];
+    extents(plan.constant_u, a, &b, e.u);
+    extents(plan.constant_v, a, &b, e.v);
+    extents(plan.constant_w, a, &b, e.w);
+    constant_extents.push_back(e);
+  }
 }
 
 namespace {

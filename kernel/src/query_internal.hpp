@@ -1,6 +1,7 @@
 #pragma once
 // Shared state of the ball-interference paths (lattice_query.cpp dispatches to query_naive.cpp,
 // query_rangefinder.cpp and query_blocks.cpp; query_plan.cpp detects which apply).
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -43,6 +44,11 @@ struct QueryState {
   std::vector<int> pattern_prefix;
   std::vector<SimilarityTransform> slab_prefixes;
   GroupTemplates first_templates;  // the templates at (0, 0, 0)
+  // Their extents under the O(1) path's maps (U, V, W), per node then per pattern: fixed for the lattice.
+  struct TemplateExtents {
+    std::array<Extent, kMaxRowMaps> u, v, w;
+  };
+  std::vector<TemplateExtents> constant_extents;
   Vec3 u_node(std::int64_t i, int n) const {
     const std::int64_t slot = i + margin;
     if (slot >= 0 && slot < static_cast<std::int64_t>(u_scales.size()))

@@ -236,14 +236,16 @@ void visit_constant(const QueryState& q, Probe& probe) {
   // One kind: the i-range of its template at (0,0,0); then per candidate i the j- and k-ranges of the
   // same template (the paper's O(1)) or of the slab's template at (i,0,0), and the elements
   // W'^k V'^j of the slab's template U'^i T0 (or of T_i).
-  auto kind = [&](const Ball& a0, const Ball* b0, const IndexBlock& rows, auto&& slab_template, auto&& test) {
-    const RowTemplate r0 = b0 ? RowTemplate::beam(a0, *b0) : RowTemplate::ball(a0);
-    steady_row_ranges(plan.constant_u, qu, r0, full(rows.i0, rows.i1), is);
+  // The template extents at (0,0,0) are fixed for the lattice (QueryState::constant_extents).
+  auto kind = [&](const Ball& a0, const Ball* b0, std::size_t slot, const IndexBlock& rows, auto&& slab_template,
+                  auto&& test) {
+    const QueryState::TemplateExtents& te = q.constant_extents[slot];
+    steady_row_ranges(plan.constant_u, qu, te.u.data(), full(rows.i0, rows.i1), is);
     if (is.empty()) return true;
     if (!plan.constant_per_slab) {
-      steady_row_ranges(V, qv, r0, full(rows.j0, rows.j1), js);
+      steady_row_ranges(V, qv, te.v.data(), full(rows.j0, rows.j1), js);
       if (js.empty()) return true;
-      steady_row_ranges(W, qw, r0, full(rows.k0, rows.k1), ks);
+      steady_row_ranges(W, qw, te.w.data(), full(rows.k0, rows.k1), ks);
     }
     for (const IndexRange& ri : is.ranges())
       for (std::int64_t i = ri.lo; i <= ri.hi; ++i) {
@@ -267,7 +269,7 @@ void visit_constant(const QueryState& q, Probe& probe) {
   };
   for (int n = 0; n < lat.node_count(); ++n) {
     const Ball& a0 = t0.nodes[static_cast<std::size_t>(n)];
-    if (!kind(a0, nullptr, IndexBlock{0, c.u, 0, c.v, 0, c.w},
+    if (!kind(a0, nullptr, static_cast<std::size_t>(n), IndexBlock{0, c.u, 0, c.v, 0, c.w},
               [&](std::int64_t i, Ball& a, Ball&) {
                 ti.fill(q, prefix, i);
                 a = ti.nodes[static_cast<std::size_t>(n)];
@@ -280,7 +282,7 @@ void visit_constant(const QueryState& q, Probe& probe) {
   for (int p = 0; p < static_cast<int>(patterns.size()); ++p) {
     const Ball& a0 = t0.beam_start[static_cast<std::size_t>(p)];
     const Ball& b0 = t0.beam_end[static_cast<std::size_t>(p)];
-    if (!kind(a0, &b0, q.pattern_starts[static_cast<std::size_t>(p)],
+    if (!kind(a0, &b0, static_cast<std::size_t>(lat.node_count() + p), q.pattern_starts[static_cast<std::size_t>(p)],
               [&](std::int64_t i, Ball& a, Ball& b) {
                 ti.fill(q, prefix, i);
                 a = ti.beam_start[static_cast<std::size_t>(p)];

@@ -60,7 +60,13 @@ void run(const char* name, const Lattice& fine, const Lattice& coarse, const dou
     if (r.method == QueryMethod::Naive && !with_naive) continue;
     if (r.method == QueryMethod::Slabs && !plan.plan().slabs_valid) continue;
     if (r.method == QueryMethod::Constant && !plan.plan().constant_valid) continue;
-    const Counted c = lil(fine, coarse, r.method);
+    // Medians of three for the methods that take about a second or less (the machine may be shared).
+    Counted c = lil(fine, coarse, r.method);
+    if (c.seconds < 1.5 && r.method != QueryMethod::Naive) {
+      std::vector<double> t{c.seconds, lil(fine, coarse, r.method).seconds, lil(fine, coarse, r.method).seconds};
+      std::sort(t.begin(), t.end());
+      c.seconds = t[1];
+    }
     if (r.method == QueryMethod::Naive) naive = c.seconds;
     if (ref_beams < 0) ref_beams = c.beams;
     char vs[32] = "-", ps[32] = "-", px[32] = "-";
