@@ -1,6 +1,10 @@
 #include "steady/beam_frustum.hpp"
 
+#include <tbb/parallel_for.h>
+
 #include <cmath>
+
+#include "steady/flat_lattice.hpp"
 
 namespace steady {
 
@@ -17,6 +21,20 @@ BeamFrustum beam_frustum(const Ball& node_a, const Ball& node_b, double ra, doub
   f.circle_b = {node_b.center - f.exit_b * n, -n, rim(node_b.radius, f.exit_b)};
   f.exists = true;
   return f;
+}
+
+Circle BeamFrustum::cut_circle() const {
+  const double x = cut_position();
+  return {cone.a + x * cone.axis, cone.axis, cone.radius_at(x)};
+}
+
+std::vector<BeamFrustum> beam_frustums(const FlatLattice& f) {
+  std::vector<BeamFrustum> out(f.beam_count());
+  tbb::parallel_for(std::int64_t(0), f.beam_count(), [&](std::int64_t e) {
+    const FlatBeam& b = f.beams[e];
+    out[e] = beam_frustum(f.balls[b.a], f.balls[b.b], b.ra, b.rb);
+  });
+  return out;
 }
 
 double frustum_volume(const BeamFrustum& f) {

@@ -95,33 +95,12 @@ struct Elements {
 
 Elements prepare(const FlatLattice& f, CleanReport& report) {
   Elements el;
-  el.frustums.resize(f.beam_count());
-  tbb::parallel_for(std::int64_t(0), f.beam_count(), [&](std::int64_t e) {
-    const FlatBeam& b = f.beams[e];
-    el.frustums[e] = beam_frustum(f.balls[b.a], f.balls[b.b], b.ra, b.rb);
-  });
+  el.frustums = beam_frustums(f);
   for (std::int64_t e = 0; e < f.beam_count(); ++e)
     if (!el.frustums[e].exists) report.degenerate_beams.push_back(e);
-  // A ball is absorbed when all its beams are degenerate and one of them joins it to a ball containing it.
-  el.absorbed.assign(f.ball_count(), 0);
-  for (std::int64_t i = 0; i < f.ball_count(); ++i) {
-    if (f.degree(i) == 0) continue;
-    bool all_degenerate = true, contained = false;
-    for (const std::int64_t* e = f.incident_begin(i); e != f.incident_end(i); ++e) {
-      if (el.frustums[*e].exists) {
-        all_degenerate = false;
-        break;
-      }
-      const Ball& me = f.balls[i];
-      const Ball& other = f.balls[f.other_ball(*e, i)];
-      if (glm::length(me.center - other.center) + me.radius <= other.radius * (1.0 + kCleanRelativeGap))
-        contained = true;
-    }
-    if (all_degenerate && contained) {
-      el.absorbed[i] = 1;
-      report.absorbed_balls.push_back(i);
-    }
-  }
+  el.absorbed = absorbed_balls(f, el.frustums);
+  for (std::int64_t i = 0; i < f.ball_count(); ++i)
+    if (el.absorbed[i]) report.absorbed_balls.push_back(i);
   return el;
 }
 
@@ -245,6 +224,26 @@ void finish(CleanReport& report, std::vector<CleanIssue>& issues, std::int64_t m
 }
 
 }  // namespace
+
+std::vector<char> absorbed_balls(const FlatLattice& f, const std::vector<BeamFrustum>& frustums) {
+  std::vector<char> absorbed(f.ball_count(), 0);
+  for (std::int64_t i = 0; i < f.ball_count(); ++i) {
+    if (f.degree(i) == 0) continue;
+    bool all_degenerate = true, contained = false;
+    for (const std::int64_t* e = f.incident_begin(i); e != f.incident_end(i); ++e) {
+      if (frustums[*e].exists) {
+        all_degenerate = false;
+        break;
+      }
+      const Ball& me = f.balls[i];
+      const Ball& other = f.balls[f.other_ball(*e, i)];
+      if (glm::length(me.center - other.center) + me.radius <= other.radius * (1.0 + kCleanRelativeGap))
+        contained = true;
+    }
+    absorbed[i] = all_degenerate && contained;
+  }
+  return absorbed;
+}
 
 CleanReport check_clean(const FlatLattice& f, const CleanCheckOptions& options) {
   CleanReport report;

@@ -4,6 +4,8 @@
 // transversal; in the hull model they are the tangent circles. The solid between the two exit planes is the
 // frustum; the beam adds to the lattice exactly that frustum minus the two spherical caps beyond the exit
 // planes (which lie inside the node balls).
+#include <vector>
+
 #include "steady/ball.hpp"
 #include "steady/hub.hpp"
 
@@ -18,7 +20,16 @@ struct BeamFrustum {
   Circle circle_a, circle_b;    // exit circles; normals point away from their node along the beam
   // Axial length of the frustum between the two exit planes.
   double length() const { return cone.length - exit_a - exit_b; }
+  // Where the B-rep cuts a beam between two separately built pieces: halfway between the exit planes, a place
+  // that commutes with similarities and always lies outside both nodes. Axial position from node a's center.
+  double cut_position() const { return 0.5 * (exit_a + cone.length - exit_b); }
+  // The cut circle, normal along the beam (from a to b).
+  Circle cut_circle() const;
 };
+
+struct FlatLattice;
+// The frustums of every beam of a listing (parallel).
+std::vector<BeamFrustum> beam_frustums(const FlatLattice& lattice);
 
 // node_a, node_b: the node balls; ra, rb: the beam's end radii (<= the node radii).
 BeamFrustum beam_frustum(const Ball& node_a, const Ball& node_b, double ra, double rb);

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "steady/beam_frustum.hpp"
 #include "steady/flat_lattice.hpp"
 #include "steady/lattice.hpp"
 
@@ -60,6 +61,9 @@ struct CleanCheckOptions {
 };
 
 CleanReport check_clean(const FlatLattice& lattice, const CleanCheckOptions& options = {});
+
+// Per ball: nested in a neighbour through a degenerate beam and carrying only degenerate beams (rule 2 above).
+std::vector<char> absorbed_balls(const FlatLattice& lattice, const std::vector<BeamFrustum>& frustums);
 CleanReport check_clean(const Lattice& lattice, const CleanCheckOptions& options = {});
 
 // The slow twin (tests): every pair of elements is tested exactly, no broad phase.
