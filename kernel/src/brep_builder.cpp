@@ -1,5 +1,6 @@
 #include "steady/brep_builder.hpp"
 
+#include <BRepClass3d_SolidClassifier.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <GC_MakeCircle.hxx>
@@ -25,6 +26,7 @@
 #include <cmath>
 #include <numeric>
 #include <sstream>
+#include <stdexcept>
 
 #include "sphere_pcurve.hpp"
 #include "steady/beam_frustum.hpp"
@@ -71,7 +73,7 @@ struct EndCircle {
   double edge_end(std::size_t k) const { return k + 1 < params.size() ? params[k + 1] : params[0] + kTwoPi; }
 };
 
-enum class BeamKind { None, Whole, HalfA, HalfB };
+enum class BeamKind { None, Whole, HalfA, HalfB, Split };
 
 struct BeamWork {
   BeamKind kind = BeamKind::None;
@@ -79,7 +81,8 @@ struct BeamWork {
   Vec3 seam_dir{0.0};
   TopoDS_Edge cut_edge;
   bool new_cut = false;
-  TopoDS_Face cone, cap;
+  TopoDS_Face cone[2];  // whole beam or the a-side half: cone[0]; the b-side half: cone[1]
+  TopoDS_Face cap[2];   // disks closing the a-side / b-side piece at the cut
 };
 
 struct HubWork {
@@ -316,7 +319,9 @@ BrepSelection BrepSelection::everything(const FlatLattice& lattice) {
 
 BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selection, CutEdges& cut_edges) {
   if (static_cast<std::int64_t>(selection.balls.size()) != f.ball_count() ||
-      static_cast<std::int64_t>(selection.beams.size()) != f.beam_count())
+      static_cast<std::int64_t>(selection.beams.size()) != f.beam_count() ||
+      (!selection.open_cuts.empty() && static_cast<std::int64_t>(selection.open_cuts.size()) != f.beam_count()) ||
+      (!selection.split.empty() && static_cast<std::int64_t>(selection.split.size()) != f.beam_count()))
     fail_input("selection", "needs one flag per ball and per beam");
   const auto start = std::chrono::steady_clock::now();
   BrepPieces out;
@@ -329,7 +334,9 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
   for (std::int64_t e = 0; e < f.beam_count(); ++e) {
     if (!selection.beams[e] || !frustums[e].exists) continue;
     const bool a = ball_built[f.beams[e].a], b = ball_built[f.beams[e].b];
-    beams[e].kind = a && b ? BeamKind::Whole : a ? BeamKind::HalfA : b ? BeamKind::HalfB : BeamKind::None;
+    const bool split = !selection.split.empty() && selection.split[e];
+    beams[e].kind = a && b ? (split ? BeamKind::Split : BeamKind::Whole)
+                           : a ? BeamKind::HalfA : b ? BeamKind::HalfB : BeamKind::None;
   }
   // Hubs and their geometry.
   std::vector<HubWork> hubs;
@@ -441,7 +448,7 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
       return st;
     };
     if (w.kind == BeamKind::Whole) {
-      build_cone_face(builder, fr, w.seam_dir, node_station(0), node_station(1), w.cone);
+      build_cone_face(builder, fr, w.seam_dir, node_station(0), node_station(1), w.cone[0]);
       return;
     }
     auto found = cut_edges.find(e);
@@ -466,37 +473,51 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
     cut.seam_param = 0.0;
     cut.sign = 1.0;
     cut.v = (fr.cut_position() - fr.exit_a) * to_v;
-    if (w.kind == BeamKind::HalfA)
-      build_cone_face(builder, fr, w.seam_dir, node_station(0), cut, w.cone);
-    else
-      build_cone_face(builder, fr, w.seam_dir, cut, node_station(1), w.cone);
-    if (selection.cap_cuts) {
+    const bool side_a = w.kind == BeamKind::HalfA || w.kind == BeamKind::Split;
+    const bool side_b = w.kind == BeamKind::HalfB || w.kind == BeamKind::Split;
+    if (side_a) build_cone_face(builder, fr, w.seam_dir, node_station(0), cut, w.cone[0]);
+    if (side_b) build_cone_face(builder, fr, w.seam_dir, cut, node_station(1), w.cone[1]);
+    if (selection.open_cuts.empty() || !selection.open_cuts[e]) {
       const Circle cc = fr.cut_circle();
       Handle(Geom_Plane) plane = new Geom_Plane(gp_Ax3(pnt(cc.center), dir(cc.normal), dir(w.seam_dir)));
-      builder.MakeFace(w.cap, plane, kBrepTolerance);
-      builder.UpdateEdge(w.cut_edge, new Geom2d_Circle(gp_Ax2d(gp_Pnt2d(0, 0), gp_Dir2d(1, 0)), cc.radius), w.cap,
-                         kBrepTolerance);
-      builder.Range(w.cut_edge, 0.0, kTwoPi);
-      TopoDS_Wire wire;
-      builder.MakeWire(wire);
-      builder.Add(wire, w.cut_edge.Oriented(TopAbs_FORWARD));
-      wire.Closed(true);
-      builder.Add(w.cap, wire);
-      // The disk faces away from the half it closes.
-      if (w.kind == BeamKind::HalfB) w.cap.Orientation(TopAbs_REVERSED);
+      Handle(Geom2d_Circle) pcurve = new Geom2d_Circle(gp_Ax2d(gp_Pnt2d(0, 0), gp_Dir2d(1, 0)), cc.radius);
+      for (int side = 0; side < 2; ++side) {
+        if (!(side == 0 ? side_a : side_b)) continue;
+        TopoDS_Face& cap = w.cap[side];
+        builder.MakeFace(cap, plane, kBrepTolerance);
+        builder.UpdateEdge(w.cut_edge, pcurve, cap, kBrepTolerance);
+        builder.Range(w.cut_edge, 0.0, kTwoPi);
+        TopoDS_Wire wire;
+        builder.MakeWire(wire);
+        builder.Add(wire, w.cut_edge.Oriented(TopAbs_FORWARD));
+        wire.Closed(true);
+        builder.Add(cap, wire);
+        // The disk faces away from the half it closes.
+        if (side == 1) cap.Orientation(TopAbs_REVERSED);
+      }
     }
   });
 
-  for (const HubWork& h : hubs) out.faces.push_back(h.face);
+  for (const HubWork& h : hubs) {
+    out.faces.push_back(h.face);
+    out.face_owner.push_back(h.ball);
+  }
   for (std::int64_t e = 0; e < f.beam_count(); ++e) {
     BeamWork& w = beams[e];
     if (w.kind == BeamKind::None) continue;
-    out.faces.push_back(w.cone);
     ++out.stats.beams;
-    if (!w.cap.IsNull()) {
-      out.faces.push_back(w.cap);
-      out.caps.emplace(e, w.cap);
-      ++out.stats.cut_caps;
+    for (int side = 0; side < 2; ++side) {
+      const std::int64_t owner = side == 0 ? f.beams[e].a : f.beams[e].b;
+      if (!w.cone[side].IsNull()) {
+        out.faces.push_back(w.cone[side]);
+        out.face_owner.push_back(owner);
+      }
+      if (!w.cap[side].IsNull()) {
+        out.faces.push_back(w.cap[side]);
+        out.face_owner.push_back(owner);
+        out.caps.push_back({e, side, w.cap[side]});
+        ++out.stats.cut_caps;
+      }
     }
     if (w.new_cut) cut_edges.emplace(e, w.cut_edge);
   }
@@ -537,13 +558,33 @@ TopoDS_Shape solids_from_faces(const std::vector<TopoDS_Face>& faces) {
     }
     b.Add(shells[it->second], faces[i]);
   }
+  // A shell whose faces point inward bounds a void (the inside of a skin): it joins the solid around it.
   std::vector<TopoDS_Solid> solids;
+  std::vector<TopoDS_Shell> voids;
   for (TopoDS_Shell& s : shells) {
     s.Closed(true);
     TopoDS_Solid solid;
     b.MakeSolid(solid);
     b.Add(solid, s);
-    solids.push_back(solid);
+    BRepClass3d_SolidClassifier classifier(solid);
+    classifier.PerformInfinitePoint(kBrepTolerance);
+    if (classifier.State() == TopAbs_IN)
+      voids.push_back(s);
+    else
+      solids.push_back(solid);
+  }
+  for (const TopoDS_Shell& v : voids) {
+    std::size_t host = 0;
+    if (solids.size() > 1) {
+      TopExp_Explorer x(v, TopAbs_VERTEX);
+      const gp_Pnt p = BRep_Tool::Pnt(TopoDS::Vertex(x.Current()));
+      for (std::size_t k = 0; k < solids.size(); ++k) {
+        BRepClass3d_SolidClassifier c(solids[k], p, kBrepTolerance);
+        if (c.State() == TopAbs_IN) host = k;
+      }
+    }
+    if (solids.empty()) throw std::runtime_error("solids_from_faces: a void shell with no solid around it");
+    b.Add(solids[host], v);
   }
   if (solids.size() == 1) return solids[0];
   TopoDS_Compound compound;

@@ -43,7 +43,9 @@ struct BrepBuildStats {
 struct BrepSelection {
   std::vector<char> balls;  // per ball: build its sphere (absorbed balls are never built)
   std::vector<char> beams;  // per beam: build it; a built beam whose ball is not built stops at its cut
-  bool cap_cuts = true;     // close cuts with planar disks (false: leave them open, for gluing)
+  std::vector<char> split;      // per beam (or empty): build it as two halves meeting at its cut, even when both
+                                // its balls are built (each half closed by its own disk, or open)
+  std::vector<char> open_cuts;  // per beam (or empty): leave its cut open, for gluing; other cuts get a disk
   SeamPreference seams = SeamPreference::FewestCrossings;  // where spherical faces put their seams
   static BrepSelection everything(const FlatLattice& lattice);
 };
@@ -51,9 +53,17 @@ struct BrepSelection {
 // The circle edge of each cut beam, shared by the pieces built on either side of the cut.
 using CutEdges = std::unordered_map<std::int64_t, TopoDS_Edge>;
 
+// A disk closing a beam's cut: side 0 closes the piece on the beam's `a` side, side 1 the `b` side.
+struct CutCap {
+  std::int64_t beam = -1;
+  int side = 0;
+  TopoDS_Face face;
+};
+
 struct BrepPieces {
-  std::vector<TopoDS_Face> faces;                       // every face, oriented outward
-  std::unordered_map<std::int64_t, TopoDS_Face> caps;   // beam -> the disk closing its cut
+  std::vector<TopoDS_Face> faces;         // every face, oriented outward
+  std::vector<std::int64_t> face_owner;   // per face: the ball whose hub it belongs to
+  std::vector<CutCap> caps;
   BrepBuildStats stats;
 };
 
