@@ -9,6 +9,7 @@ namespace steadypy {
 namespace py = pybind11;
 void bind_similarity(py::module_& m);
 void bind_lattice(py::module_& m);
+void bind_brep(py::module_& m);
 }  // namespace steadypy
 
 PYBIND11_MODULE(steadylattice, m) {
@@ -29,4 +30,5 @@ PYBIND11_MODULE(steadylattice, m) {
   m.attr("FORMAT_VERSION") = steady::kLatticeFormatVersion;
   steadypy::bind_similarity(m);
   steadypy::bind_lattice(m);
+  steadypy::bind_brep(m);
 }
