@@ -143,4 +143,28 @@ std::vector<steady::NodeId> to_omitted(py::handle value) {
   return out;
 }
 
+PythonProgress::PythonProgress(py::object report) : report_(std::move(report)) {}
+
+steady::Progress::Callback PythonProgress::callback() {
+  if (report_.is_none()) return {};
+  return [this](double fraction) {
+    py::gil_scoped_acquire gil;
+    try {
+      py::object answer = report_(fraction);
+      return answer.is_none() || answer.cast<bool>();
+    } catch (py::error_already_set& e) {
+      error_type_ = e.type();
+      error_value_ = e.value();
+      error_trace_ = e.trace();
+      return false;
+    }
+  };
+}
+
+void PythonProgress::rethrow_callback_error() {
+  if (!error_type_) return;
+  PyErr_Restore(error_type_.release().ptr(), error_value_.release().ptr(), error_trace_.release().ptr());
+  throw py::error_already_set();
+}
+
 }  // namespace steadypy

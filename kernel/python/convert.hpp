@@ -6,6 +6,7 @@
 #include <string>
 
 #include "steady/frame.hpp"
+#include "steady/progress.hpp"
 #include "steady/lattice.hpp"
 #include "steady/vec.hpp"
 
@@ -30,5 +31,18 @@ std::vector<steady::TemplateNode> to_nodes(py::handle value);
 std::vector<steady::BeamPattern> to_beams(py::handle value);
 steady::Counts to_counts(py::handle value);
 std::vector<steady::NodeId> to_omitted(py::handle value);
+
+// A kernel progress callback from a Python callable `report(fraction)` (None: no reporting). The callable runs
+// with the GIL held, on the calling thread only; returning False cancels (steadylattice.Cancelled is raised).
+// An exception raised by the callable cancels too, and is raised again by rethrow_callback_error().
+struct PythonProgress {
+  explicit PythonProgress(py::object report);
+  steady::Progress::Callback callback();
+  void rethrow_callback_error();
+
+ private:
+  py::object report_;
+  py::object error_type_, error_value_, error_trace_;
+};
 
 }  // namespace steadypy

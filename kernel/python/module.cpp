@@ -3,11 +3,13 @@
 
 #include "steady/errors.hpp"
 #include "steady/lattice_io.hpp"
+#include "steady/progress.hpp"
 
 namespace steadypy {
 namespace py = pybind11;
 void bind_similarity(py::module_& m);
 void bind_lattice(py::module_& m);
+void bind_brep(py::module_& m);
 void bind_queries(py::module_& m);
 }  // namespace steadypy
 
@@ -15,15 +17,20 @@ PYBIND11_MODULE(steadylattice, m) {
   namespace py = pybind11;
   m.doc() = "Steady lattices: similarities, steady brick lattices, their file format (the LatticeWorkbench kernel).";
   // InvalidInput derives from std::invalid_argument, which pybind11 already raises as ValueError.
+  // Raised when a progress callback returned False: the operation stopped and changed nothing.
+  static py::exception<steady::Cancelled> cancelled(m, "Cancelled");
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const steady::ResourceLimit& e) {
       PyErr_SetString(PyExc_MemoryError, e.what());
+    } catch (const steady::Cancelled& e) {
+      PyErr_SetString(cancelled.ptr(), e.what());
     }
   });
   m.attr("FORMAT_VERSION") = steady::kLatticeFormatVersion;
   steadypy::bind_similarity(m);
   steadypy::bind_lattice(m);
+  steadypy::bind_brep(m);
   steadypy::bind_queries(m);
 }

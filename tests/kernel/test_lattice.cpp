@@ -24,7 +24,7 @@ Lattice graded_lattice(Counts counts, std::vector<NodeId> omitted = {}) {
   LatticeDefinition d;
   d.nodes = {{{0, 0, 0}, 0.2}, {{0.5, 0.5, 0.5}, 0.15}};
   d.beams = {{0, 1, 0, 0, 0}, {0, 0, 1, 0, 0}, {0, 0, 0, 1, 0}, {0, 0, 0, 0, 1},
-             {1, 1, 1, 1, 0, 0.05, 0.04}, {1, 2, 1, 0, 0}};
+             {1, 1, 1, 1, 0, 0.05, 0.04}, {1, 2, 1, 0, 0}, {1, 0, 1, -1, 0}, {0, -2, 0, 1, 1, 0.1, 0.1}};
   d.counts = counts;
   d.u = {Similarity::swirl(0.05, {0, 0, 1}, {0, -20, 0}, 1.01)};
   d.v = {Similarity::screw(0.03, {1, 0, 0}, {0, 0, 5}, 1.0)};
@@ -187,6 +187,10 @@ TEST(Lattice, BulkListingsMatchElementEvaluation) {
 TEST(Lattice, ExplicitBeamRadiiScaleWithTheirGroups) {
   const Lattice lat = graded_lattice({4, 3, 3});
   const BeamId id{1, 1, 1, 4};  // pattern (1, 1,1,1, 0) with radii (0.05, 0.04)
+  EXPECT_FALSE(lat.beam_exists({0, 0, 0, 6}));  // pattern (1, 0,1,-1, 0) needs k >= 1
+  EXPECT_TRUE(lat.beam_exists({0, 0, 2, 6}));   // ... up to the last layer
+  EXPECT_FALSE(lat.beam_exists({1, 0, 0, 7}));  // pattern (0, -2,0,1, 1) needs i >= 2
+  EXPECT_TRUE(lat.beam_exists({3, 0, 0, 7}));
   const BeamGeometry g = lat.beam(id);
   const double s_start = lat.group_transform(1, 1, 1).scale, s_end = lat.group_transform(2, 2, 2).scale;
   EXPECT_NEAR(g.start.radius, 0.05 * s_start, 1e-15);

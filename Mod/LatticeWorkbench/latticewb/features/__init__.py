@@ -1,0 +1,1 @@
+"""App-side document objects of the workbench (no GUI needed)."""

@@ -1,0 +1,84 @@
+"""Toolbar and menu commands of the workbench. Each command is a thin shell over latticewb.api, inside an undo
+transaction; long work reports progress (see latticewb.progress)."""
+import os
+
+import FreeCAD
+import FreeCADGui
+
+from latticewb import resources
+
+
+def _selected(predicate=None):
+    objects = FreeCADGui.Selection.getSelection()
+    return [o for o in objects if predicate is None or predicate(o)]
+
+
+class NewLatticeCommand:
+    """Creates a SteadyLattice and opens its task panel (live preview); Cancel removes it again."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": resources.icon("SteadyLattice"),
+            "MenuText": "New steady lattice",
+            "ToolTip": "Create a steady lattice from a preset cell (cubic, BCC, FCC, octet, diamond, Kelvin, "
+                       "honeycomb) or a custom one, graded by taper, twist and bend per cell",
+        }
+
+    def IsActive(self):
+        return FreeCAD.ActiveDocument is not None
+
+    def Activated(self):
+        from latticewb import api
+        from latticewb.gui.lattice_task_panel import LatticeTaskPanel
+        doc = FreeCAD.ActiveDocument
+        doc.openTransaction("New steady lattice")
+        obj = api.make_lattice(doc)
+        doc.recompute()
+        FreeCADGui.Selection.clearSelection()
+        FreeCADGui.Selection.addSelection(obj)
+        if FreeCADGui.ActiveDocument and FreeCADGui.ActiveDocument.ActiveView:
+            FreeCADGui.SendMsgToActiveView("ViewFit")
+        FreeCADGui.Control.showDialog(LatticeTaskPanel(obj, transaction=None))
+
+
+class ExportCommand:
+    """Exports the selected objects to STEP (one named part per object), BREP or a lattice file (JSON)."""
+
+    FILTERS = "STEP (*.step *.stp);;BREP (*.brep *.brp);;Lattice file (*.json)"
+
+    def GetResources(self):
+        return {
+            "Pixmap": resources.icon("Export"),
+            "MenuText": "Export lattice...",
+            "ToolTip": "Export the selected lattices and parts: STEP (named parts), BREP, or the lattice file (JSON)",
+        }
+
+    def IsActive(self):
+        return bool(FreeCADGui.Selection.getSelection())
+
+    def Activated(self):
+        from PySide import QtGui
+        from latticewb import api
+        objects = _selected()
+        start = os.path.join(os.path.expanduser("~"), objects[0].Label + ".step")
+        path, _ = QtGui.QFileDialog.getSaveFileName(FreeCADGui.getMainWindow(), "Export lattice", start, self.FILTERS)
+        if not path:
+            return
+        try:
+            api.export(objects, path)
+        except (ValueError, RuntimeError) as error:
+            FreeCAD.Console.PrintError("Export: %s\n" % error)
+            return
+        FreeCAD.Console.PrintMessage("Exported %d object(s) to %s\n" % (len(objects), path))
+
+
+COMMANDS = {
+    "Lattice_NewLattice": NewLatticeCommand(),
+    "Lattice_Export": ExportCommand(),
+}
+
+for _name, _command in COMMANDS.items():
+    FreeCADGui.addCommand(_name, _command)
+
+TOOLBAR = ["Lattice_NewLattice", "Separator", "Lattice_Export"]
+MENU = TOOLBAR

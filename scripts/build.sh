@@ -1,0 +1,7 @@
+#!/usr/bin/env bash
+# Configures and builds everything (kernel, module, tests, benchmarks) into ./build. Used by install.sh and test.sh.
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE=Release > "$root/build-configure.log" 2>&1 || {
+  cat "$root/build-configure.log"; exit 1; }
+cmake --build "$root/build" -j "$(nproc)"
