@@ -33,7 +33,7 @@ void run(const char* name, const Lattice& lat, const PaperRow& paper, int repeat
               static_cast<long long>(lat.counts().w), static_cast<long long>(lat.ball_count()),
               static_cast<long long>(lat.beam_count()), lq.plan().describe().c_str());
   long naive_hits = 0;
-  const double naive = median_seconds(repeats_naive, [&] { naive_hits = hits_of(lq, queries, QueryMethod::Naive); });
+  const double naive = median_thread_cpu_seconds(repeats_naive, [&] { naive_hits = hits_of(lq, queries, QueryMethod::Naive); });
   std::printf("  %-34s %11s %10s %9s %6s %14s %9s\n", "method (100 BIQs, 1 thread)", "seconds", "us/query",
               "speed-up", "hits", "paper seconds", "paper x");
   std::printf("  %-34s %11.4f %10.1f %9s %6ld %14.4g %9s\n", "naive O(uvw)", naive, 1e4 * naive, "1x", naive_hits,
@@ -53,7 +53,7 @@ void run(const char* name, const Lattice& lat, const PaperRow& paper, int repeat
     if ((p.method == QueryMethod::Slabs || p.method == QueryMethod::PaperSlabs) && !lq.plan().slabs_valid) continue;
     if (p.method == QueryMethod::Constant && !lq.plan().constant_valid) continue;
     long hits = 0;
-    const double t = median_seconds(repeats_fast, [&] { hits = hits_of(lq, queries, p.method); });
+    const double t = median_thread_cpu_seconds(repeats_fast, [&] { hits = hits_of(lq, queries, p.method); });
     char paper_x[32] = "-", paper_s[32] = "-", ours_x[32];
     if (p.paper_seconds > 0) {
       std::snprintf(paper_s, sizeof paper_s, "%.4g", p.paper_seconds);
@@ -70,8 +70,10 @@ void run(const char* name, const Lattice& lat, const PaperRow& paper, int repeat
 int main(int argc, char** argv) {
   const bool long_run = has_flag(argc, argv, "--long");
   std::printf("Ball-interference queries: this machine vs dissertation Table 7.2 (i7-7700K, Java, 1 thread).\n"
-              "Speed-ups are against the naive scan measured in this run; the machine may be shared, so the\n"
-              "fast paths are medians of repeats (the naive scan is repeated only with --long).\n");
+              "Times are CPU seconds of the querying thread (other processes sharing the cores do not inflate\n"
+              "them), medians of repeats (the naive scan is repeated only with --long); speed-ups are against\n"
+              "the naive scan measured in this run. Load average: %s\n",
+              load_average().c_str());
   const int rn = long_run ? 3 : 1, rf = long_run ? 9 : 5;
   run("regular BCC", regular_fine(), {"regular", 55.2, 1.60, 0.0558, 0.00586}, rn, rf);
   run("cylindrical BCC", cylindrical_fine(), {"cylindrical", 259, 2.72, 0.0554, -1}, rn, rf);
