@@ -74,7 +74,6 @@ QueryState::QueryState(const Lattice& lat)
                  std::max<std::int64_t>(0, -b.dk), std::min<std::int64_t>(c.w, c.w - b.dk)};
     pattern_starts.push_back(s);
   }
-  const SimilarityTransform g = lat.placement().transform();
   auto world = [&](const Similarity& step, std::int64_t count) {
     return PowerTable(lat.placement() * step * lat.placement().inverse(), -margin, count - 1 + margin);
   };
@@ -89,7 +88,6 @@ QueryState::QueryState(const Lattice& lat)
       for (const auto& n : nodes) u_nodes.push_back(t.apply_point(n.center));
     }
   }
-  (void)g;
   prefix_offsets.emplace_back(0, 0);
   for (const BeamPattern& b : lat.definition().beams) {
     const std::pair<int, int> o(b.dj, b.dk);

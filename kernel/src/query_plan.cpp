@@ -1,14 +1,16 @@
 // Which fast ball-interference paths a lattice allows: the numerical detection of the conditions of the
 // paper's O(u) and O(1) BIQs, per normalized map.
 //
-// O(u) needs V and W to commute (then the (j, k) slab of every i is V'^j W'^k of one template) and the
-// maps used for each of V, W to be unchanged by the other; O(1) needs the same for all three pairs. A
-// map M of X is unchanged by Y when Y preserves M's level sets; for each map type there is a closest map
-// Y* that preserves it exactly (below), and the condition holds when Y and Y* differ by at most
-// kConditionTolerance * L over the lattice's bound (L: its distance scale). The measured differences
-// then make the paths exact anyway: with Y* in place of Y the invariance is exact, and j applications of
-// Y instead of Y* move an element by at most j * mismatch * growth, so the query is inflated by that
-// (QueryPlan::slabs_inflation, constant_inflation). Non-commuting steps are handled the same way.
+// Element (i, j, k) is W'^k V'^j U'^i of the template (world steps X' = G X G^-1) in every lattice, so a
+// normalized map of U' that V' and W' leave unchanged gives one i-range for all rows: O(u) needs such
+// maps for V (kept by W') and W (kept by V'), O(1) for all three. The steps need not commute (the paper
+// asks that they do); only a dilation map's beam extent, which depends on the beam's shape, is used for
+// beams only when they do. A map M of X is unchanged by Y when Y preserves M's level sets; for each map
+// type there is a closest map Y* that preserves it exactly (below), and the condition holds when Y and
+// Y* differ by at most kConditionTolerance * L over the lattice's bound (L: its distance scale). The
+// measured differences then make the paths exact anyway: with Y* in place of Y the invariance is exact,
+// and j applications of Y instead of Y* move an element by at most j * mismatch * growth, so the query
+// is inflated by that (QueryPlan::slabs_inflation, constant_inflation).
 #include <algorithm>
 #include <cmath>
 #include <sstream>

@@ -8,6 +8,8 @@
 namespace steady {
 namespace {
 
+constexpr double kPi = 3.14159265358979323846;
+
 // Relative widening of the invariant comparisons: their inputs are within a few ulps of the lattice's
 // own evaluation, and the query is already inflated (kQueryInflation) for the rest.
 constexpr double kInvariantSlack = 1e-12;
@@ -136,25 +138,25 @@ bool RowInvariant::may_meet(const Ball& a, const Ball& b) const {
         const double d = glm::length(w);
         if (d <= x.radius) {
           lo = 0.0;
-          hi = M_PI;
+          hi = kPi;
           return;
         }
         const double phi = std::atan2(glm::length(radial(x.center, point_, axis_)), glm::dot(w, axis_));
         const double h = std::asin(std::min(1.0, x.radius / d));
         lo = std::max(0.0, phi - h);
-        hi = std::min(M_PI, phi + h);
+        hi = std::min(kPi, phi + h);
       };
       double la, ha, lb, hb;
       polar(a, la, ha);
       polar(b, lb, hb);
       double lo = std::min(la, lb), hi = std::max(ha, hb);
-      if (lo < 0.5 * M_PI || hi > 0.5 * M_PI) {
+      if (lo < 0.5 * kPi || hi > 0.5 * kPi) {
         const Vec3 ra = radial(a.center, point_, axis_), rb = radial(b.center, point_, axis_);
         const double shadow = std::max(0.0, distance_to_hull(point_, {point_ + ra, a.radius}, {point_ + rb, b.radius}));
         const double far = std::max(glm::length(a.center - point_) + a.radius, glm::length(b.center - point_) + b.radius);
         const double floor = std::asin(std::min(1.0, shadow / far));
-        if (lo < 0.5 * M_PI) lo = std::min(lo, floor);
-        if (hi > 0.5 * M_PI) hi = std::max(hi, M_PI - floor);
+        if (lo < 0.5 * kPi) lo = std::min(lo, floor);
+        if (hi > 0.5 * kPi) hi = std::max(hi, kPi - floor);
       }
       const double q_phi = std::atan2(q_sin_, q_cos_);
       const double q_h = std::asin(std::min(1.0, query_.radius / q_dist_));
