@@ -64,6 +64,23 @@ def make_lattice(doc, preset=None, **params):
     return obj
 
 
+def make_part(doc, lattice, body=None, policy="clip", skin=0.0, dangling="keep"):
+    """Adds a LatticePart: `lattice` (a SteadyLattice) trimmed into `body` (an object with a solid Shape, or None
+    for the whole lattice) as one exact B-rep solid. policy: "clip" (cut at the boundary) or "whole" (only hubs
+    entirely inside); skin: wall thickness of the body's skin united with the lattice (0: none); dangling: "keep"
+    or "remove" beams joining a kept hub to a dropped one. Recompute the document to build it."""
+    from latticewb.features import lattice_part
+    if policy not in lattice_part.POLICIES:
+        raise ValueError("policy: expected one of %s (got %r)" % (", ".join(lattice_part.POLICIES), policy))
+    if dangling not in lattice_part.DANGLING:
+        raise ValueError("dangling: expected one of %s (got %r)" % (", ".join(lattice_part.DANGLING), dangling))
+    if not skin >= 0.0:
+        raise ValueError("skin: must be >= 0 (got %r)" % (skin,))
+    if not hasattr(lattice, "Preset"):
+        raise ValueError("lattice: expected a SteadyLattice object")
+    return lattice_part.make_lattice_part(doc, lattice, body, policy, skin, dangling)
+
+
 def lattice(obj):
     """The steadylattice.Lattice of a SteadyLattice object, placed by the object's Placement.
     Its group indices (i, j, k) follow the order the steps apply in, obj.AppliedOrder (for example "VWU": i counts
@@ -104,8 +121,13 @@ def export_shape(obj):
 
 
 def _export_step(objects, path):
-    """STEP with one named part per object (FreeCAD's Import keeps labels and colours)."""
+    """STEP with one named part per object (FreeCAD's Import keeps labels and colours); a single LatticePart is
+    written as an assembly of its skin and its lattice, two named and coloured parts."""
     import Import
+    if len(objects) == 1 and hasattr(objects[0], "Policy") and hasattr(objects[0], "Skin"):
+        from latticewb.features import lattice_part
+        lattice_part.write_step_assembly(objects[0], path)
+        return
     shapes = [export_shape(o) for o in objects]
     if all(shape is o.Shape for shape, o in zip(shapes, objects)):
         Import.export(objects, path)
@@ -129,7 +151,8 @@ def _export_step(objects, path):
 
 def export(objects, path):
     """Writes `objects` to `path`; the format follows the extension:
-    .step/.stp (STEP, one part per object with its name), .brep/.brp (BREP of the compound),
+    .step/.stp (STEP, one part per object with its name; a LatticePart alone: its skin and lattice as two parts),
+    .brep/.brp (BREP of the compound),
     .json (the lattice file of a single SteadyLattice)."""
     objects = list(objects)
     if not objects:

@@ -41,6 +41,41 @@ class NewLatticeCommand:
         FreeCADGui.Control.showDialog(LatticeTaskPanel(obj, transaction=None))
 
 
+class LatticePartCommand:
+    """Trims the selected lattice into the selected body (select the lattice, then the body) as one B-rep solid."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": resources.icon("LatticePart"),
+            "MenuText": "Lattice part",
+            "ToolTip": "Fill the selected body with the selected lattice: select a steady lattice and then a solid. "
+                       "Set the skin thickness and the trim policy (clip or whole hubs) in the property editor",
+        }
+
+    def IsActive(self):
+        return any(hasattr(o, "Preset") for o in FreeCADGui.Selection.getSelection())
+
+    def Activated(self):
+        from latticewb import api
+        selection = FreeCADGui.Selection.getSelection()
+        lattices = [o for o in selection if hasattr(o, "Preset")]
+        bodies = [o for o in selection if not hasattr(o, "Preset") and hasattr(o, "Shape") and o.Shape.Solids]
+        if len(lattices) != 1 or len(bodies) > 1:
+            FreeCAD.Console.PrintError("Lattice part: select one steady lattice and at most one solid body\n")
+            return
+        doc = FreeCAD.ActiveDocument
+        doc.openTransaction("Lattice part")
+        try:
+            part = api.make_part(doc, lattices[0], bodies[0] if bodies else None)
+            doc.recompute()
+        except Exception:
+            doc.abortTransaction()
+            raise
+        doc.commitTransaction()
+        FreeCADGui.Selection.clearSelection()
+        FreeCADGui.Selection.addSelection(part)
+
+
 class ExportCommand:
     """Exports the selected objects to STEP (one named part per object), BREP or a lattice file (JSON)."""
 
@@ -74,11 +109,12 @@ class ExportCommand:
 
 COMMANDS = {
     "Lattice_NewLattice": NewLatticeCommand(),
+    "Lattice_Part": LatticePartCommand(),
     "Lattice_Export": ExportCommand(),
 }
 
 for _name, _command in COMMANDS.items():
     FreeCADGui.addCommand(_name, _command)
 
-TOOLBAR = ["Lattice_NewLattice", "Separator", "Lattice_Export"]
+TOOLBAR = ["Lattice_NewLattice", "Lattice_Part", "Separator", "Lattice_Export"]
 MENU = TOOLBAR

@@ -67,3 +67,35 @@ class ViewProviderSteadyLattice:
 
     __getstate__ = dumps
     __setstate__ = loads
+
+
+class ViewProviderLatticePart:
+    """A LatticePart shows its lattice and body as children in the tree (hidden, like a Boolean's inputs)."""
+
+    def __init__(self, vobj):
+        vobj.Proxy = self
+
+    def attach(self, vobj):
+        self.Object = vobj.Object
+
+    def claimChildren(self):
+        obj = self.Object
+        return [o for o in (obj.Lattice, obj.Body) if o is not None]
+
+    def onDelete(self, vobj, subelements):
+        for child in self.claimChildren():
+            if child.ViewObject:
+                child.ViewObject.Visibility = True
+        return True
+
+    def getIcon(self):
+        return resources.icon("LatticePart")
+
+    def dumps(self):
+        return None
+
+    def loads(self, state):
+        return None
+
+    __getstate__ = dumps
+    __setstate__ = loads
