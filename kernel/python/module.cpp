@@ -10,6 +10,7 @@ namespace py = pybind11;
 void bind_similarity(py::module_& m);
 void bind_lattice(py::module_& m);
 void bind_brep(py::module_& m);
+void bind_queries(py::module_& m);
 }  // namespace steadypy
 
 PYBIND11_MODULE(steadylattice, m) {
@@ -31,4 +32,5 @@ PYBIND11_MODULE(steadylattice, m) {
   steadypy::bind_similarity(m);
   steadypy::bind_lattice(m);
   steadypy::bind_brep(m);
+  steadypy::bind_queries(m);
 }
