@@ -11,37 +11,8 @@ import FreeCAD
 import Part
 
 import steadylattice as sl
+from brute_force import inside_lattice
 from latticewb import api
-
-
-def inside_lattice(points, lattice):
-    """Brute force membership: inside a ball, or inside a beam, the convex hull of two balls, which is the union of
-    the balls interpolated between them; |p - c(t)| - r(t) is convex in t, so a ternary search finds its minimum."""
-    centers, radii = lattice.balls()
-    a, b, ra, rb = lattice.beams()
-    inside = np.zeros(len(points), dtype=bool)
-    for c, r in zip(centers, radii):
-        inside |= np.einsum("ij,ij->i", points - c, points - c) <= r * r
-    for i, j, r1, r2 in zip(a, b, ra, rb):
-        ca, cb = centers[i], centers[j]
-        lo, hi = np.minimum(ca, cb) - max(r1, r2), np.maximum(ca, cb) + max(r1, r2)
-        near = np.where(np.all((points >= lo) & (points <= hi), axis=1) & ~inside)[0]
-        if not len(near):
-            continue
-        p = points[near]
-        t0, t1 = np.zeros(len(p)), np.ones(len(p))
-
-        def gap(t):
-            c = ca + t[:, None] * (cb - ca)
-            return np.linalg.norm(p - c, axis=1) - (r1 + t * (r2 - r1))
-
-        for _ in range(40):
-            m1, m2 = t0 + (t1 - t0) / 3, t1 - (t1 - t0) / 3
-            left = gap(m1) < gap(m2)
-            t1 = np.where(left, m2, t1)
-            t0 = np.where(left, t0, m1)
-        inside[near[gap((t0 + t1) / 2) <= 0.0]] = True
-    return inside
 
 
 def monte_carlo_volume(lattice, in_body, lo, hi, samples=60000, seed=3):

@@ -81,6 +81,32 @@ def make_part(doc, lattice, body=None, policy="clip", skin=0.0, dangling="keep")
     return lattice_part.make_lattice_part(doc, lattice, body, policy, skin, dangling)
 
 
+_FILTER_PARAMETERS = {
+    "invert": "Invert", "stencil_size": "StencilSize", "stencil_mask": "StencilMask", "coarse": "Coarse",
+    "gyroid_period": "GyroidPeriod", "gyroid_thickness": "GyroidThickness", "gyroid_mode": "GyroidMode",
+    "body": "Body",
+}
+
+
+def make_filter(doc, source, kind="stencil", **params):
+    """Adds a LatticeFilter of `source` (a SteadyLattice or another LatticeFilter; filters cascade).
+
+    kind: "stencil" (stencil_size=(x, y, z), stencil_mask="10..." one character per cell of the period, i fastest),
+    "lattice-in-lattice" (coarse=<SteadyLattice or LatticeFilter>), "gyroid" (gyroid_period, gyroid_thickness,
+    gyroid_mode "sheet" or "solid") or "inside body" (body=<object with a solid Shape>); invert=True keeps the
+    complement. Recompute the document to evaluate it."""
+    from latticewb.features import lattice_filter
+    if not lattice_filter.is_lattice_source(source):
+        raise ValueError("source: expected a SteadyLattice or LatticeFilter")
+    if kind not in lattice_filter.KINDS:
+        raise ValueError("kind: expected one of %s (got %r)" % (", ".join(lattice_filter.KINDS), kind))
+    unknown = set(params) - set(_FILTER_PARAMETERS)
+    if unknown:
+        raise ValueError("%s: unknown parameter (known: %s)" % (sorted(unknown)[0], ", ".join(_FILTER_PARAMETERS)))
+    values = {_FILTER_PARAMETERS[k]: (list(v) if k == "stencil_size" else v) for k, v in params.items()}
+    return lattice_filter.make_lattice_filter(doc, source, kind, **values)
+
+
 def lattice(obj):
     """The steadylattice.Lattice of a SteadyLattice object, placed by the object's Placement.
     Its group indices (i, j, k) follow the order the steps apply in, obj.AppliedOrder (for example "VWU": i counts
