@@ -29,6 +29,9 @@ using steady::QueryMethod;
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// Filtered coarse lattices up to this many balls are materialized when a Lattice-in-Lattice filter is
+// made from them (16 MB of mask at most).
+constexpr std::int64_t kMaterializeCoarseBalls = std::int64_t(1) << 24;
 
 // One LatticeQuery per Python Lattice object (its tables and plan cost O(u + v + w) to build), dropped
 // with the object through a weak reference. Lattice objects are immutable, so the cache never goes stale.
@@ -261,9 +264,20 @@ keeps a ball whose node passes and a beam whose two nodes both pass.)doc")
         "mask) is true.");
   m.def(
       "LatticeInLattice",
-      [](py::handle coarse) { return PyFilter{steady::lattice_in_lattice(as_filtered(coarse, "coarse"))}; },
+      [](py::handle coarse) {
+        auto c = as_filtered(coarse, "coarse");
+        // A filtered coarse lattice is evaluated once for all its nodes (one byte per ball) when that is
+        // small next to the fine work it saves: every fine node then looks coarse nodes up instead of
+        // filtering them again.
+        if (c->filter() && !c->materialized() && c->lattice().ball_count() <= kMaterializeCoarseBalls) {
+          py::gil_scoped_release release;
+          c->materialize();
+        }
+        return PyFilter{steady::lattice_in_lattice(c)};
+      },
       py::arg("coarse"),
-      "Keep a node whose ball meets the coarse Lattice or FilteredLattice (cascade by filtering the coarse one).");
+      "Keep a node whose ball meets the coarse Lattice or FilteredLattice (cascade by filtering the coarse one; "
+      "a filtered coarse lattice of up to 2^24 balls is materialized first).");
   m.def(
       "Gyroid",
       [](double period, double thickness, py::handle origin, const std::string& mode) {

@@ -177,6 +177,12 @@ def test_filters_and_lattice_in_lattice():
     finer = cubic_lattice((17, 17, 17), 0.05)
     cascade = finer.filtered(sl.LatticeInLattice(lil))
     assert 0 < cascade.ball_mask().sum() < finer.ball_count
+    # A filtered coarse lattice is materialized when a LiL filter is made from it; same answer either way.
+    fresh = sl.FilteredLattice(fine, sl.LatticeInLattice(coarse))
+    assert not fresh.materialized
+    again = finer.filtered(sl.LatticeInLattice(fresh))
+    assert fresh.materialized
+    assert np.array_equal(again.ball_mask(), cascade.ball_mask())
     # Stencils, gyroids, Python bodies and their combinations.
     stencil = sl.IndexStencil(np.array([[[1]], [[0]]], bool))
     sb = fine.filtered(stencil).ball_mask()
