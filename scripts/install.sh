@@ -11,9 +11,9 @@ cmake --install build > build/install.log
 echo "install: module  -> $(/usr/bin/python3 -c 'import steadylattice; print(steadylattice.__file__)')"
 echo "install: workbench -> $HOME/.local/share/FreeCAD/Mod/LatticeWorkbench"
 mkdir -p out
-rm -f out/octet_lattice.step
+rm -f out/lattice_part.step
 LATTICE_OUT="$root/out" freecad -c "$root/examples/main_job.py"
 # freecad -c exits 0 even when a script fails to import: check the result itself
-[ -s out/octet_lattice.step ] || { echo "install: the main job did not write out/octet_lattice.step"; exit 1; }
+[ -s out/lattice_part.step ] || { echo "install: the main job did not write out/lattice_part.step"; exit 1; }
 echo "install: main job done; results in $root/out:"
 ls -l "$root/out"

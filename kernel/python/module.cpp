@@ -9,6 +9,8 @@ namespace steadypy {
 namespace py = pybind11;
 void bind_similarity(py::module_& m);
 void bind_lattice(py::module_& m);
+void bind_brep(py::module_& m);
+void bind_queries(py::module_& m);
 void bind_properties(py::module_& m);
 }  // namespace steadypy
 
@@ -30,5 +32,7 @@ PYBIND11_MODULE(steadylattice, m) {
   m.attr("FORMAT_VERSION") = steady::kLatticeFormatVersion;
   steadypy::bind_similarity(m);
   steadypy::bind_lattice(m);
+  steadypy::bind_brep(m);
+  steadypy::bind_queries(m);
   steadypy::bind_properties(m);
 }

@@ -186,6 +186,7 @@ void Lattice::build_indexing() {
   for (int p = 0; p < np; ++p) {
     const BeamPattern& b = def_.beams[p];
     PatternRange& r = pattern_ranges_[p];
+    // overlap() sets the start index: call it before reading it (the order inside one expression is unspecified).
     const std::int64_t ni = overlap(def_.counts.u, b.di, &r.i0);
     const std::int64_t nj = overlap(def_.counts.v, b.dj, &r.j0);
     const std::int64_t nk = overlap(def_.counts.w, b.dk, &r.k0);

@@ -64,6 +64,49 @@ def make_lattice(doc, preset=None, **params):
     return obj
 
 
+def make_part(doc, lattice, body=None, policy="clip", skin=0.0, dangling="keep"):
+    """Adds a LatticePart: `lattice` (a SteadyLattice) trimmed into `body` (an object with a solid Shape, or None
+    for the whole lattice) as one exact B-rep solid. policy: "clip" (cut at the boundary) or "whole" (only hubs
+    entirely inside); skin: wall thickness of the body's skin united with the lattice (0: none); dangling: "keep"
+    or "remove" beams joining a kept hub to a dropped one. Recompute the document to build it."""
+    from latticewb.features import lattice_part
+    if policy not in lattice_part.POLICIES:
+        raise ValueError("policy: expected one of %s (got %r)" % (", ".join(lattice_part.POLICIES), policy))
+    if dangling not in lattice_part.DANGLING:
+        raise ValueError("dangling: expected one of %s (got %r)" % (", ".join(lattice_part.DANGLING), dangling))
+    if not skin >= 0.0:
+        raise ValueError("skin: must be >= 0 (got %r)" % (skin,))
+    if not hasattr(lattice, "Preset"):
+        raise ValueError("lattice: expected a SteadyLattice object")
+    return lattice_part.make_lattice_part(doc, lattice, body, policy, skin, dangling)
+
+
+_FILTER_PARAMETERS = {
+    "invert": "Invert", "stencil_size": "StencilSize", "stencil_mask": "StencilMask", "coarse": "Coarse",
+    "gyroid_period": "GyroidPeriod", "gyroid_thickness": "GyroidThickness", "gyroid_mode": "GyroidMode",
+    "body": "Body",
+}
+
+
+def make_filter(doc, source, kind="stencil", **params):
+    """Adds a LatticeFilter of `source` (a SteadyLattice or another LatticeFilter; filters cascade).
+
+    kind: "stencil" (stencil_size=(x, y, z), stencil_mask="10..." one character per cell of the period, i fastest),
+    "lattice-in-lattice" (coarse=<SteadyLattice or LatticeFilter>), "gyroid" (gyroid_period, gyroid_thickness,
+    gyroid_mode "sheet" or "solid") or "inside body" (body=<object with a solid Shape>); invert=True keeps the
+    complement. Recompute the document to evaluate it."""
+    from latticewb.features import lattice_filter
+    if not lattice_filter.is_lattice_source(source):
+        raise ValueError("source: expected a SteadyLattice or LatticeFilter")
+    if kind not in lattice_filter.KINDS:
+        raise ValueError("kind: expected one of %s (got %r)" % (", ".join(lattice_filter.KINDS), kind))
+    unknown = set(params) - set(_FILTER_PARAMETERS)
+    if unknown:
+        raise ValueError("%s: unknown parameter (known: %s)" % (sorted(unknown)[0], ", ".join(_FILTER_PARAMETERS)))
+    values = {_FILTER_PARAMETERS[k]: (list(v) if k == "stencil_size" else v) for k, v in params.items()}
+    return lattice_filter.make_lattice_filter(doc, source, kind, **values)
+
+
 def lattice(obj):
     """The steadylattice.Lattice of a SteadyLattice object, placed by the object's Placement.
     Its group indices (i, j, k) follow the order the steps apply in, obj.AppliedOrder (for example "VWU": i counts
@@ -104,8 +147,13 @@ def export_shape(obj):
 
 
 def _export_step(objects, path):
-    """STEP with one named part per object (FreeCAD's Import keeps labels and colours)."""
+    """STEP with one named part per object (FreeCAD's Import keeps labels and colours); a single LatticePart is
+    written as an assembly of its skin and its lattice, two named and coloured parts."""
     import Import
+    if len(objects) == 1 and hasattr(objects[0], "Policy") and hasattr(objects[0], "Skin"):
+        from latticewb.features import lattice_part
+        lattice_part.write_step_assembly(objects[0], path)
+        return
     shapes = [export_shape(o) for o in objects]
     if all(shape is o.Shape for shape, o in zip(shapes, objects)):
         Import.export(objects, path)
@@ -129,7 +177,8 @@ def _export_step(objects, path):
 
 def export(objects, path):
     """Writes `objects` to `path`; the format follows the extension:
-    .step/.stp (STEP, one part per object with its name), .brep/.brp (BREP of the compound),
+    .step/.stp (STEP, one part per object with its name; a LatticePart alone: its skin and lattice as two parts),
+    .brep/.brp (BREP of the compound),
     .json (the lattice file of a single SteadyLattice)."""
     objects = list(objects)
     if not objects:

@@ -29,10 +29,12 @@ def beam_frustum(ca, ra, cb, rb):
     return Part.makeCone(ra * cos_phi, rb * cos_phi, height, start, axis)
 
 
-def lattice_shape(lattice, report=None):
-    """The balls and beams as separate solids. report(fraction) -> False cancels (steadylattice.Cancelled)."""
+def lattice_shape(lattice, report=None, ball_mask=None, beam_mask=None):
+    """The balls and beams as separate solids (only those the masks keep, when given: a filtered lattice).
+    report(fraction) -> False cancels (steadylattice.Cancelled)."""
     from latticewb.progress import check_cancelled
-    elements = lattice.ball_count + lattice.beam_count
+    elements = (lattice.ball_count if ball_mask is None else int(ball_mask.sum())) + \
+        (lattice.beam_count if beam_mask is None else int(beam_mask.sum()))
     if elements > MAX_SEPARATE_SOLIDS:
         raise ValueError("Representation: %d balls and beams are too many to build as separate solids (at most %d); "
                          "use the Preview representation to see it, or a LatticePart for exact geometry"
@@ -40,14 +42,17 @@ def lattice_shape(lattice, report=None):
     centers, radii = lattice.balls()
     a, b, ra, rb = lattice.beams()
     points = [FreeCAD.Vector(*c) for c in centers.tolist()]
+    kept_balls = range(len(points)) if ball_mask is None else ball_mask.nonzero()[0].tolist()
+    if beam_mask is not None:
+        a, b, ra, rb = a[beam_mask], b[beam_mask], ra[beam_mask], rb[beam_mask]
     solids = []
-    for q, (p, r) in enumerate(zip(points, radii.tolist())):
+    for q, index in enumerate(kept_balls):
         if q % _REPORT_EVERY == 0:
             check_cancelled(report, q / elements)
-        solids.append(Part.makeSphere(r, p))
+        solids.append(Part.makeSphere(float(radii[index]), points[index]))
     for q, (i, j, r1, r2) in enumerate(zip(a.tolist(), b.tolist(), ra.tolist(), rb.tolist())):
         if q % _REPORT_EVERY == 0:
-            check_cancelled(report, (len(points) + q) / elements)
+            check_cancelled(report, (len(kept_balls) + q) / elements)
         frustum = beam_frustum(points[i], r1, points[j], r2)
         if frustum is not None:
             solids.append(frustum)

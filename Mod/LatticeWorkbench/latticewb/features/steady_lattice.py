@@ -177,6 +177,17 @@ class SteadyLattice:
         else:
             obj.Shape = lattice_shape.empty_shape()
 
+    def preview_data(self, obj):
+        """(lattice, ball mask, beam mask) for the view provider's preview; the kernel lattice is not saved with the
+        document, so after opening it is rebuilt here."""
+        lattice = getattr(self, "lattice", None)
+        if lattice is None:
+            try:
+                lattice = self.lattice = build_lattice(obj)
+            except ValueError:
+                return None
+        return lattice, None, None
+
     def dumps(self):
         return None  # everything lives in the properties
 

@@ -41,6 +41,86 @@ class NewLatticeCommand:
         FreeCADGui.Control.showDialog(LatticeTaskPanel(obj, transaction=None))
 
 
+class LatticePartCommand:
+    """Trims the selected lattice into the selected body (select the lattice, then the body) as one B-rep solid."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": resources.icon("LatticePart"),
+            "MenuText": "Lattice part",
+            "ToolTip": "Fill the selected body with the selected lattice: select a steady lattice and then a solid. "
+                       "Set the skin thickness and the trim policy (clip or whole hubs) in the property editor",
+        }
+
+    def IsActive(self):
+        return any(hasattr(o, "Preset") for o in FreeCADGui.Selection.getSelection())
+
+    def Activated(self):
+        from latticewb import api
+        selection = FreeCADGui.Selection.getSelection()
+        lattices = [o for o in selection if hasattr(o, "Preset")]
+        bodies = [o for o in selection if not hasattr(o, "Preset") and hasattr(o, "Shape") and o.Shape.Solids]
+        if len(lattices) != 1 or len(bodies) > 1:
+            FreeCAD.Console.PrintError("Lattice part: select one steady lattice and at most one solid body\n")
+            return
+        doc = FreeCAD.ActiveDocument
+        doc.openTransaction("Lattice part")
+        try:
+            part = api.make_part(doc, lattices[0], bodies[0] if bodies else None)
+            doc.recompute()
+        except Exception:
+            doc.abortTransaction()
+            raise
+        doc.commitTransaction()
+        FreeCADGui.Selection.clearSelection()
+        FreeCADGui.Selection.addSelection(part)
+
+
+class FilterCommand:
+    """Filters the selected lattice. With a second lattice selected: Lattice-in-Lattice (keep the nodes whose balls
+    meet it); with a solid selected: keep the nodes inside it; otherwise a stencil, editable in the property editor
+    (also gyroid)."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": resources.icon("LatticeFilter"),
+            "MenuText": "Filter / Lattice-in-Lattice",
+            "ToolTip": "Thin the selected lattice: select a lattice, then optionally a coarse lattice "
+                       "(Lattice-in-Lattice) or a solid (inside body); otherwise a stencil. Kind, stencil and gyroid "
+                       "are in the property editor; filters cascade",
+        }
+
+    def IsActive(self):
+        from latticewb.features.lattice_filter import is_lattice_source
+        return any(is_lattice_source(o) for o in FreeCADGui.Selection.getSelection())
+
+    def Activated(self):
+        from latticewb import api
+        from latticewb.features.lattice_filter import is_lattice_source
+        selection = FreeCADGui.Selection.getSelection()
+        source = selection[0]
+        if not is_lattice_source(source):
+            FreeCAD.Console.PrintError("Filter: select the lattice to filter first\n")
+            return
+        second = selection[1] if len(selection) > 1 else None
+        doc = FreeCAD.ActiveDocument
+        doc.openTransaction("Lattice filter")
+        try:
+            if second is not None and is_lattice_source(second):
+                obj = api.make_filter(doc, source, "lattice-in-lattice", coarse=second)
+            elif second is not None and hasattr(second, "Shape") and second.Shape.Solids:
+                obj = api.make_filter(doc, source, "inside body", body=second)
+            else:
+                obj = api.make_filter(doc, source, "stencil")
+            doc.recompute()
+        except Exception:
+            doc.abortTransaction()
+            raise
+        doc.commitTransaction()
+        FreeCADGui.Selection.clearSelection()
+        FreeCADGui.Selection.addSelection(obj)
+
+
 class ExportCommand:
     """Exports the selected objects to STEP (one named part per object), BREP or a lattice file (JSON)."""
 
@@ -74,11 +154,13 @@ class ExportCommand:
 
 COMMANDS = {
     "Lattice_NewLattice": NewLatticeCommand(),
+    "Lattice_Part": LatticePartCommand(),
+    "Lattice_Filter": FilterCommand(),
     "Lattice_Export": ExportCommand(),
 }
 
 for _name, _command in COMMANDS.items():
     FreeCADGui.addCommand(_name, _command)
 
-TOOLBAR = ["Lattice_NewLattice", "Separator", "Lattice_Export"]
+TOOLBAR = ["Lattice_NewLattice", "Lattice_Filter", "Lattice_Part", "Separator", "Lattice_Export"]
 MENU = TOOLBAR

@@ -46,11 +46,14 @@ class LatticePreview:
         self.drawn_beams = 0
         self.show(False)
 
-    def update(self, lattice, budget):
-        """Fills the preview from a steadylattice.Lattice; returns the number of beams drawn."""
+    def update(self, lattice, budget, ball_mask=None, beam_mask=None):
+        """Fills the preview from a steadylattice.Lattice (only the balls and beams the masks keep, when given);
+        returns the number of beams drawn."""
         start = time.perf_counter()
         centers, _ = lattice.balls()
         a, b, _, _ = lattice.beams()
+        if beam_mask is not None:
+            a, b = a[beam_mask], b[beam_mask]
         stride = max(1, math.ceil(len(a) / max(1, budget)))
         if stride > 1:
             a, b = a[::stride], b[::stride]
@@ -66,7 +69,8 @@ class LatticePreview:
         if len(index):
             flat = index.reshape(-1)
             self.lines.coordIndex.setValues(0, len(flat), flat)
-        self.points.numPoints = 0 if len(a) else len(points)  # points only for a lattice of lone balls
+        # points only for a lattice of lone balls (all of them: a mask cannot thin an SoPointSet's prefix)
+        self.points.numPoints = 0 if len(a) else (len(points) if ball_mask is None else 0)
         self.drawn_beams = len(a)
         self.seconds = time.perf_counter() - start
         return self.drawn_beams

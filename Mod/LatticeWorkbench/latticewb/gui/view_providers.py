@@ -5,8 +5,9 @@ import FreeCADGui
 from latticewb import resources
 
 
-class ViewProviderSteadyLattice:
-    """Draws a SteadyLattice: FreeCAD's own shape display for Solids, the scalable preview otherwise."""
+class ViewProviderLatticePreview:
+    """Draws a lattice feature: FreeCAD's own shape display when its Shape holds solids, the scalable preview
+    otherwise. The feature's proxy gives the preview's data through preview_data(obj)."""
 
     def __init__(self, vobj):
         vobj.Proxy = self
@@ -20,28 +21,32 @@ class ViewProviderSteadyLattice:
     def updateData(self, obj, prop):
         if prop != "Shape" or not hasattr(self, "preview"):
             return
-        from latticewb.features import steady_lattice
-        if steady_lattice.shows_solids(obj):
+        data = None if obj.Shape.Solids else obj.Proxy.preview_data(obj)
+        if data is None:
             self.preview.clear()
             return
-        lattice = getattr(obj.Proxy, "lattice", None)
-        if lattice is None:  # a document just opened: the kernel lattice is not saved, rebuild it
-            try:
-                lattice = steady_lattice.build_lattice(obj)
-            except ValueError:
-                self.preview.clear()
-                return
-        drawn = self.preview.update(lattice, obj.PreviewBudget)
-        if drawn < lattice.beam_count:
-            FreeCAD.Console.PrintMessage("%s: preview draws %d of %d beams (PreviewBudget)\n"
-                                         % (obj.Label, drawn, lattice.beam_count))
+        lattice, ball_mask, beam_mask = data
+        drawn = self.preview.update(lattice, getattr(obj, "PreviewBudget", 2000000), ball_mask, beam_mask)
+        total = lattice.beam_count if beam_mask is None else int(beam_mask.sum())
+        if drawn < total:
+            FreeCAD.Console.PrintMessage("%s: preview draws %d of %d beams (PreviewBudget)\n" % (obj.Label, drawn, total))
         self.preview.show(obj.ViewObject.Visibility)
 
     def onChanged(self, vobj, prop):
         if prop == "Visibility" and hasattr(self, "preview"):
-            from latticewb.features import steady_lattice
-            self.preview.show(vobj.Visibility and not steady_lattice.shows_solids(vobj.Object))
+            self.preview.show(vobj.Visibility and not vobj.Object.Shape.Solids)
 
+    def dumps(self):
+        return None
+
+    def loads(self, state):
+        return None
+
+    __getstate__ = dumps
+    __setstate__ = loads
+
+
+class ViewProviderSteadyLattice(ViewProviderLatticePreview):
     def getIcon(self):
         return resources.icon("SteadyLattice")
 
@@ -59,6 +64,29 @@ class ViewProviderSteadyLattice:
         FreeCADGui.ActiveDocument.setEdit(vobj.Object.Name, 0)
         return True
 
+
+class ViewProviderLatticePart:
+    """A LatticePart shows its lattice and body as children in the tree (hidden, like a Boolean's inputs)."""
+
+    def __init__(self, vobj):
+        vobj.Proxy = self
+
+    def attach(self, vobj):
+        self.Object = vobj.Object
+
+    def claimChildren(self):
+        obj = self.Object
+        return [o for o in (obj.Lattice, obj.Body) if o is not None]
+
+    def onDelete(self, vobj, subelements):
+        for child in self.claimChildren():
+            if child.ViewObject:
+                child.ViewObject.Visibility = True
+        return True
+
+    def getIcon(self):
+        return resources.icon("LatticePart")
+
     def dumps(self):
         return None
 
@@ -67,3 +95,18 @@ class ViewProviderSteadyLattice:
 
     __getstate__ = dumps
     __setstate__ = loads
+
+
+class ViewProviderLatticeFilter(ViewProviderLatticePreview):
+    def claimChildren(self):
+        obj = self.Object
+        return [o for o in (obj.Source, obj.Coarse) if o is not None]
+
+    def onDelete(self, vobj, subelements):
+        for child in self.claimChildren():
+            if child.ViewObject:
+                child.ViewObject.Visibility = True
+        return True
+
+    def getIcon(self):
+        return resources.icon("LatticeFilter")

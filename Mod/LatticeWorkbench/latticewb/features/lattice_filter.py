@@ -1,0 +1,168 @@
+"""LatticeFilter: which nodes of a lattice exist, decided by a filter; beams stay where both their nodes do.
+
+The source is a SteadyLattice or another LatticeFilter (filters cascade: each one further thins its source).
+Kinds:
+  stencil             keep node (i, j, k) when StencilMask says so, repeating with period StencilSize
+  lattice-in-lattice  keep a node whose ball meets the Coarse lattice (a SteadyLattice or LatticeFilter)
+  gyroid              keep a node inside a gyroid sheet (or solid) of the given period and thickness
+  inside body         keep a node whose centre is inside the Body (a solid)
+Invert keeps the complement. Nothing is stored per element: the kernel evaluates the filter on demand.
+"""
+import FreeCAD
+
+from latticewb.features import lattice_shape
+
+KINDS = ["stencil", "lattice-in-lattice", "gyroid", "inside body"]
+GYROID_MODES = ["sheet", "solid"]
+
+_PROPERTIES = [
+    ("App::PropertyLink", "Source", "Filter", "The lattice to filter: a SteadyLattice or another LatticeFilter"),
+    ("App::PropertyEnumeration", "Kind", "Filter", "Which nodes to keep (see the Stencil, Coarse, Gyroid, Body entries)"),
+    ("App::PropertyBool", "Invert", "Filter", "Keep the nodes the filter would drop"),
+    ("App::PropertyIntegerList", "StencilSize", "Stencil", "Period of the stencil along the lattice's i, j, k"),
+    ("App::PropertyString", "StencilMask", "Stencil",
+     "One character per cell of the period, i fastest then j then k: 1 keeps, 0 drops (e.g. '10' with size 2 1 1)"),
+    ("App::PropertyLink", "Coarse", "Lattice in lattice",
+     "Keep the nodes whose balls meet this coarse lattice (a SteadyLattice or LatticeFilter)"),
+    ("App::PropertyLength", "GyroidPeriod", "Gyroid", "Period of the gyroid field"),
+    ("App::PropertyFloat", "GyroidThickness", "Gyroid", "Half-thickness of the sheet in field units (0 to 1.5)"),
+    ("App::PropertyEnumeration", "GyroidMode", "Gyroid", "sheet: |g| <= thickness; solid: g <= thickness"),
+    ("App::PropertyLink", "Body", "Inside body", "Keep the nodes whose centres are inside this solid"),
+    ("App::PropertyInteger", "BallCount", "Result", "Balls kept (read only)"),
+    ("App::PropertyInteger", "BeamCount", "Result", "Beams kept (read only)"),
+]
+
+
+class LatticeFilter:
+    def __init__(self, obj):
+        obj.Proxy = self
+        self.ensure_properties(obj)
+
+    @staticmethod
+    def ensure_properties(obj):
+        fresh = {p[1] for p in _PROPERTIES if p[1] not in obj.PropertiesList}
+        for kind, name, group, tip in _PROPERTIES:
+            if name in fresh:
+                obj.addProperty(kind, name, group, tip)
+        if "Kind" in fresh:
+            obj.Kind = KINDS
+            obj.Kind = "stencil"
+        if "StencilSize" in fresh:
+            obj.StencilSize = [2, 1, 1]
+        if "StencilMask" in fresh:
+            obj.StencilMask = "10"
+        if "GyroidPeriod" in fresh:
+            obj.GyroidPeriod = 20.0
+        if "GyroidThickness" in fresh:
+            obj.GyroidThickness = 0.4
+        if "GyroidMode" in fresh:
+            obj.GyroidMode = GYROID_MODES
+            obj.GyroidMode = "sheet"
+        for name in ("BallCount", "BeamCount"):
+            obj.setEditorMode(name, 1)
+
+    def onDocumentRestored(self, obj):
+        self.ensure_properties(obj)
+
+    def execute(self, obj):
+        try:
+            filtered = filtered_lattice(obj)
+            ball_mask, beam_mask = filtered.ball_mask(), filtered.beam_mask()
+        except ValueError as error:
+            FreeCAD.Console.PrintError("%s: %s\n" % (obj.Label, error))
+            raise ValueError("%s: %s" % (obj.Label, error)) from None
+        self.view = (filtered.lattice, ball_mask, beam_mask)  # for the view provider's preview
+        obj.BallCount = int(ball_mask.sum())
+        obj.BeamCount = int(beam_mask.sum())
+        if obj.BallCount + obj.BeamCount <= lattice_shape.MAX_SOLID_ELEMENTS:
+            obj.Shape = lattice_shape.lattice_shape(filtered.lattice, ball_mask=ball_mask, beam_mask=beam_mask)
+        else:
+            obj.Shape = lattice_shape.empty_shape()
+
+    def preview_data(self, obj):
+        view = getattr(self, "view", None)
+        if view is None:
+            try:
+                filtered = filtered_lattice(obj)
+                view = self.view = (filtered.lattice, filtered.ball_mask(), filtered.beam_mask())
+            except ValueError:
+                return None
+        return view
+
+    def dumps(self):
+        return None
+
+    def loads(self, state):
+        return None
+
+    __getstate__ = dumps
+    __setstate__ = loads
+
+
+def is_lattice_source(obj):
+    return obj is not None and (hasattr(obj, "Preset") or hasattr(obj, "StencilMask"))
+
+
+def _stencil(obj):
+    import numpy as np
+    import steadylattice as sl
+    size = list(obj.StencilSize)
+    if len(size) != 3 or min(size) < 1:
+        raise ValueError("StencilSize: give three periods >= 1 (got %s)" % size)
+    mask = obj.StencilMask.replace(" ", "")
+    if len(mask) != size[0] * size[1] * size[2] or set(mask) - {"0", "1"}:
+        raise ValueError("StencilMask: give %d characters 0 or 1 (one per cell of the %dx%dx%d period, i fastest)"
+                         % (size[0] * size[1] * size[2], size[0], size[1], size[2]))
+    cells = np.array([c == "1" for c in mask], dtype=bool).reshape(size[2], size[1], size[0])
+    return sl.IndexStencil(np.ascontiguousarray(cells.transpose(2, 1, 0)))
+
+
+def node_filter(obj):
+    """The steadylattice.Filter of this LatticeFilter alone (without its source's)."""
+    import steadylattice as sl
+    if obj.Kind == "stencil":
+        f = _stencil(obj)
+    elif obj.Kind == "lattice-in-lattice":
+        if not is_lattice_source(obj.Coarse):
+            raise ValueError("Coarse: link the coarse lattice (a SteadyLattice or LatticeFilter)")
+        f = sl.LatticeInLattice(filtered_lattice(obj.Coarse))
+    elif obj.Kind == "gyroid":
+        if not obj.GyroidPeriod.Value > 0.0:
+            raise ValueError("GyroidPeriod: must be > 0")
+        f = sl.Gyroid(obj.GyroidPeriod.Value, obj.GyroidThickness, (0.0, 0.0, 0.0), obj.GyroidMode)
+    else:
+        if obj.Body is None or not obj.Body.Shape.Solids:
+            raise ValueError("Body: link a solid")
+        f = sl.InsideBody(obj.Body.Shape.exportBrepToString())
+    return ~f if obj.Invert else f
+
+
+def filtered_lattice(obj):
+    """A steadylattice.FilteredLattice (placed in the document's coordinates) of a SteadyLattice or LatticeFilter;
+    a cascade of filters is the conjunction of their filters on the base lattice."""
+    import steadylattice as sl
+    from latticewb import api
+    if hasattr(obj, "Preset"):
+        return sl.FilteredLattice(api.lattice(obj))
+    if not is_lattice_source(obj.Source):
+        raise ValueError("Source: link a SteadyLattice or another LatticeFilter")
+    if obj.Source == obj or obj.Coarse == obj:
+        raise ValueError("Source: a filter cannot filter itself")
+    source = filtered_lattice(obj.Source)
+    own = node_filter(obj)
+    combined = own if source.filter is None else source.filter & own
+    return sl.FilteredLattice(source.lattice, combined)
+
+
+def make_lattice_filter(doc, source, kind="stencil", name="LatticeFilter", **values):
+    obj = doc.addObject("Part::FeaturePython", name)
+    LatticeFilter(obj)
+    obj.Source = source
+    obj.Kind = kind
+    for key, value in values.items():
+        setattr(obj, key, value)
+    if FreeCAD.GuiUp:
+        from latticewb.gui import view_providers
+        view_providers.ViewProviderLatticeFilter(obj.ViewObject)
+        source.ViewObject.Visibility = False
+    return obj

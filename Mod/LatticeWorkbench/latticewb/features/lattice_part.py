@@ -1,0 +1,126 @@
+"""LatticePart: a steady lattice trimmed into a body, optionally with a skin, as one exact B-rep solid.
+
+Links to a SteadyLattice and to a body (any object whose Shape holds a closed solid: a Part primitive, a PartDesign
+Body, an imported STEP part). The kernel classifies every hub against the body, keeps inside hubs whole, drops
+outside ones and cuts only the crossing hubs; with a skin, the body's wall of that thickness is united with the
+lattice trimmed to the inner offset. Editing the lattice or the body re-trims the part.
+"""
+import FreeCAD
+import Part
+
+POLICIES = ["clip", "whole"]
+DANGLING = ["keep", "remove"]
+
+_PROPERTIES = [
+    ("App::PropertyLink", "Lattice", "Part", "The SteadyLattice to trim"),
+    ("App::PropertyLink", "Body", "Part", "The solid the lattice fills (empty: the whole lattice as one part)"),
+    ("App::PropertyEnumeration", "Policy", "Part",
+     "clip: cut the lattice at the body's boundary; whole: keep only hubs entirely inside, never cut"),
+    ("App::PropertyEnumeration", "Dangling", "Part",
+     "keep or remove the beams that join a kept hub to a dropped one"),
+    ("App::PropertyLength", "Skin", "Part",
+     "Wall thickness of a skin (the body's inward offset) united with the lattice; 0: no skin"),
+    ("App::PropertyFloat", "Volume", "Result", "Volume of the part in mm^3 (read only)"),
+    ("App::PropertyInteger", "FaceCount", "Result", "Faces of the part's B-rep (read only)"),
+]
+
+
+class LatticePart:
+    def __init__(self, obj):
+        obj.Proxy = self
+        self.ensure_properties(obj)
+
+    @staticmethod
+    def ensure_properties(obj):
+        fresh = {p[1] for p in _PROPERTIES if p[1] not in obj.PropertiesList}
+        for kind, name, group, tip in _PROPERTIES:
+            if name in fresh:
+                obj.addProperty(kind, name, group, tip)
+        if "Policy" in fresh:
+            obj.Policy = POLICIES
+            obj.Policy = "clip"
+        if "Dangling" in fresh:
+            obj.Dangling = DANGLING
+            obj.Dangling = "keep"
+        for name in ("Volume", "FaceCount"):
+            obj.setEditorMode(name, 1)
+
+    def onDocumentRestored(self, obj):
+        self.ensure_properties(obj)
+
+    def onChanged(self, obj, prop):
+        if prop == "Skin" and hasattr(obj, "Skin") and obj.Skin.Value < 0.0:
+            FreeCAD.Console.PrintWarning("%s: Skin must be >= 0 (got %g); set to 0\n" % (obj.Label, obj.Skin.Value))
+            obj.Skin = 0.0
+
+    def execute(self, obj):
+        try:
+            text = part_brep(obj)
+        except ValueError as error:
+            FreeCAD.Console.PrintError("%s: %s\n" % (obj.Label, error))
+            raise ValueError("%s: %s" % (obj.Label, error)) from None
+        shape = Part.Shape()
+        shape.importBrepFromString(text)
+        obj.Shape = shape
+        obj.Volume = shape.Volume
+        obj.FaceCount = len(shape.Faces)
+
+    def dumps(self):
+        return None
+
+    def loads(self, state):
+        return None
+
+    __getstate__ = dumps
+    __setstate__ = loads
+
+
+def body_brep(obj):
+    """BREP text of the part's body, in global coordinates, or None without a body."""
+    if obj.Body is None:
+        return None
+    shape = obj.Body.Shape
+    if shape.isNull() or not shape.Solids:
+        raise ValueError("Body: %s holds no solid to fill (a closed solid is needed)" % obj.Body.Label)
+    return shape.exportBrepToString()
+
+
+def kernel_request(obj):
+    """(placed steadylattice.Lattice, body BREP or None, policy, skin, dangling) of a LatticePart."""
+    from latticewb import api
+    if obj.Lattice is None:
+        raise ValueError("Lattice: link a SteadyLattice to trim")
+    if not hasattr(obj.Lattice, "Preset"):
+        raise ValueError("Lattice: %s is not a SteadyLattice" % obj.Lattice.Label)
+    return api.lattice(obj.Lattice), body_brep(obj), obj.Policy, obj.Skin.Value, obj.Dangling
+
+
+def part_brep(obj):
+    lattice, body, policy, skin, dangling = kernel_request(obj)
+    if skin > 0.0 and body is None:
+        raise ValueError("Skin: a skin needs a Body")
+    return lattice.brep(body, policy, skin, dangling)
+
+
+def write_step_assembly(obj, path):
+    """STEP with the skin and the lattice as two named, coloured parts (the kernel's XCAF writer)."""
+    lattice, body, policy, skin, dangling = kernel_request(obj)
+    lattice.write_step(path, body, policy, skin, dangling, lattice_name=obj.Label + " lattice",
+                       skin_name=obj.Label + " skin")
+
+
+def make_lattice_part(doc, lattice, body=None, policy="clip", skin=0.0, dangling="keep", name="LatticePart"):
+    obj = doc.addObject("Part::FeaturePython", name)
+    LatticePart(obj)
+    obj.Lattice = lattice
+    obj.Body = body
+    obj.Policy = policy
+    obj.Skin = skin
+    obj.Dangling = dangling
+    if FreeCAD.GuiUp:
+        from latticewb.gui import view_providers
+        view_providers.ViewProviderLatticePart(obj.ViewObject)
+        lattice.ViewObject.Visibility = False
+        if body is not None:
+            body.ViewObject.Visibility = False
+    return obj

@@ -1,0 +1,58 @@
+#pragma once
+// Trimming a lattice into a CAD body, with an optional skin. Classification first, Booleans only where needed.
+//
+// Every hub (a ball with its half-beams up to the beams' cuts) has a bounding ball. Against the body's boundary
+// it is inside, outside or crossing: a triangulation of the boundary bounds the distance quickly, the exact
+// distance (BRepExtrema) decides the hubs near it, and the inside/outside state spreads along beams from one
+// exact point classification per connected region. Then:
+//   policy Clip  - inside hubs are kept whole (Boolean-free B-rep), outside hubs dropped, and only the crossing
+//                  hubs, closed by disks at their cuts toward kept hubs, meet the body in one Common; the result
+//                  is glued to the rest along the circles of those disks (the disks are removed);
+//   policy Whole - only hubs entirely inside are kept, never cut (no Boolean at all).
+// Dangling beams (joining a kept hub to a dropped one) are kept as stumps closed at their cut, or removed.
+// With a skin of thickness t, the part is skin(t) united with the lattice trimmed to the inner offset: hubs are
+// classified against the inner boundary, and only the hubs crossing it take part in the union with the skin.
+#include <TopoDS_Shape.hxx>
+
+#include <cstdint>
+#include <string>
+
+#include "steady/flat_lattice.hpp"
+#include "steady/lattice.hpp"
+
+namespace steady {
+
+enum class TrimPolicy { Clip, Whole };
+enum class DanglingBeams { Keep, Remove };
+
+TrimPolicy trim_policy_from_string(const std::string& name);        // "clip" | "whole"
+DanglingBeams dangling_from_string(const std::string& name);        // "keep" | "remove"
+
+struct TrimOptions {
+  TrimPolicy policy = TrimPolicy::Clip;
+  DanglingBeams dangling = DanglingBeams::Keep;
+  double skin = 0.0;          // wall thickness; 0: no skin
+  bool unite_skin = true;     // false: return the skin and the trimmed lattice as separate shapes
+};
+
+struct TrimStats {
+  std::int64_t inside_hubs = 0, outside_hubs = 0, crossing_hubs = 0;
+  std::int64_t exact_distance_tests = 0;  // hubs the triangulation could not decide
+  std::int64_t removed_beams = 0;         // dangling beams removed
+  std::int64_t band_clusters = 0;         // independent Booleans the crossing hubs were split into
+  std::int64_t faces = 0;
+  double classify_seconds = 0.0, build_seconds = 0.0, boolean_seconds = 0.0, assemble_seconds = 0.0;
+};
+
+struct TrimResult {
+  TopoDS_Shape part;     // the result: trimmed lattice, united with the skin when there is one and unite_skin
+  TopoDS_Shape lattice;  // when !unite_skin: the lattice trimmed to the inner offset
+  TopoDS_Shape skin;     // the skin, when there is one
+  TrimStats stats;
+};
+
+// Throws InvalidInput naming "body" (not one closed valid solid; the lattice misses it), "skin" (negative,
+// too thick) or "policy" (nothing left after trimming).
+TrimResult trim_lattice(const FlatLattice& lattice, const TopoDS_Shape& body, const TrimOptions& options);
+
+}  // namespace steady

@@ -1,0 +1,169 @@
+// Python bindings of the B-rep side: the clean check, the part as BREP text, STEP assemblies, and the B-rep
+// properties tests and scripts need (validity, volume, counts). Thin: conversions only; the GIL is released
+// while the kernel works.
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "convert.hpp"
+#include "steady/brep_io.hpp"
+#include "steady/clean_check.hpp"
+#include "steady/flat_lattice.hpp"
+#include "steady/lattice.hpp"
+#include "steady/lattice_part.hpp"
+#include "steady/step_assembly.hpp"
+#include "steady/trim.hpp"
+
+namespace steadypy {
+
+using steady::Lattice;
+
+namespace {
+
+steady::LatticePartRequest part_request(const py::object& body, const std::string& policy, double skin,
+                                        const std::string& dangling) {
+  steady::LatticePartRequest r;
+  if (!body.is_none()) {
+    if (!py::isinstance<py::str>(body)) value_error("body", "expected BREP text (str), as Part.Shape.exportBrepToString() gives");
+    r.body_brep = body.cast<std::string>();
+  }
+  r.trim.policy = steady::trim_policy_from_string(policy);
+  r.trim.dangling = steady::dangling_from_string(dangling);
+  r.trim.skin = skin;
+  return r;
+}
+
+std::array<double, 3> to_color(py::handle value, const std::string& name) {
+  const steady::Vec3 c = to_vec3(value, name);
+  for (int k = 0; k < 3; ++k)
+    if (c[k] < 0.0 || c[k] > 1.0) value_error(name, "colour components must lie in [0, 1]");
+  return {c.x, c.y, c.z};
+}
+
+struct Properties {
+  bool valid = false;
+  double volume = 0.0;
+  std::int64_t faces = 0, solids = 0;
+  std::string report;
+};
+
+Properties properties(const TopoDS_Shape& shape) {
+  return {steady::is_valid(shape), steady::shape_volume(shape), steady::face_count(shape), steady::solid_count(shape),
+          steady::validity_report(shape)};
+}
+
+py::dict to_dict(const Properties& p) {
+  py::dict d;
+  d["valid"] = p.valid;
+  d["volume"] = p.volume;
+  d["faces"] = p.faces;
+  d["solids"] = p.solids;
+  d["report"] = p.report;
+  return d;
+}
+
+}  // namespace
+
+void bind_brep(py::module_& m) {
+  auto lattice = py::reinterpret_borrow<py::class_<Lattice>>(m.attr("Lattice"));
+  lattice.def(
+      "clean_check",
+      [](const Lattice& lat, std::int64_t max_reported) {
+        steady::CleanReport r;
+        {
+          py::gil_scoped_release release;
+          r = steady::check_clean(lat, {max_reported});
+        }
+        py::list issues;
+        for (const steady::CleanIssue& i : r.issues)
+          issues.append(py::dict(py::arg("kind") = steady::to_string(i.kind), py::arg("ball") = i.ball,
+                                 py::arg("other_ball") = i.other_ball, py::arg("beam") = i.beam,
+                                 py::arg("other_beam") = i.other_beam, py::arg("message") = i.describe()));
+        py::dict d;
+        d["clean"] = r.clean();
+        d["issue_count"] = r.issue_count;
+        d["issues"] = issues;
+        d["absorbed_balls"] = r.absorbed_balls;
+        d["degenerate_beams"] = r.degenerate_beams;
+        return d;
+      },
+      py::arg("max_reported") = 10000,
+      "Whether the lattice can become a B-rep with no Boolean: exit circles disjoint on every ball, no element "
+      "meeting a foreign one. Returns {clean, issue_count, issues: [{kind, ball, other_ball, beam, other_beam, "
+      "message}], absorbed_balls, degenerate_beams}; indices refer to balls() and beams().");
+  lattice.def(
+      "brep",
+      [](const Lattice& lat, const py::object& body, const std::string& policy, double skin,
+         const std::string& dangling) {
+        const steady::LatticePartRequest request = part_request(body, policy, skin, dangling);
+        std::string text;
+        {
+          py::gil_scoped_release release;
+          text = steady::lattice_part_brep(steady::flatten(lat), request);
+        }
+        return text;
+      },
+      py::arg("body") = py::none(), py::arg("policy") = "clip", py::arg("skin") = 0.0, py::arg("dangling") = "keep",
+      "BREP text of the lattice as one solid (a compound of solids when it has several components). body: BREP "
+      "text of a solid (Part.Shape.exportBrepToString()) to trim into; policy: 'clip' (cut at the boundary) or "
+      "'whole' (keep only hubs entirely inside, never cut); skin: wall thickness of a skin united with the "
+      "lattice; dangling: 'keep' or 'remove' beams joining a kept hub to a dropped one.");
+  lattice.def(
+      "write_step",
+      [](const Lattice& lat, const std::string& path, const py::object& body, const std::string& policy, double skin,
+         const std::string& dangling, const std::string& lattice_name, const std::string& skin_name,
+         const py::object& lattice_color, const py::object& skin_color) {
+        const steady::LatticePartRequest request = part_request(body, policy, skin, dangling);
+        steady::StepNames names;
+        names.lattice = lattice_name;
+        names.skin = skin_name;
+        names.lattice_color = to_color(lattice_color, "lattice_color");
+        names.skin_color = to_color(skin_color, "skin_color");
+        py::gil_scoped_release release;
+        steady::write_lattice_step(path, steady::flatten(lat), request, names);
+      },
+      py::arg("path"), py::arg("body") = py::none(), py::arg("policy") = "clip", py::arg("skin") = 0.0,
+      py::arg("dangling") = "keep", py::arg("lattice_name") = "Lattice", py::arg("skin_name") = "Skin",
+      py::arg("lattice_color") = py::make_tuple(0.85, 0.55, 0.20), py::arg("skin_color") = py::make_tuple(0.55, 0.65, 0.80),
+      "Writes a STEP assembly: the lattice (trimmed to the inner offset when there is a skin) and the skin as two "
+      "named, coloured parts.");
+  m.def(
+      "brep_properties",
+      [](const std::string& text) {
+        Properties p;
+        {
+          py::gil_scoped_release release;
+          p = properties(steady::brep_from_text(text, "text"));
+        }
+        return to_dict(p);
+      },
+      py::arg("text"), "{valid, volume, faces, solids, report} of a shape given as BREP text (OpenCASCADE's checks).");
+  m.def(
+      "read_step",
+      [](const std::string& path) {
+        std::vector<steady::StepPart> parts;
+        std::vector<Properties> props;
+        std::vector<std::string> texts;
+        {
+          py::gil_scoped_release release;
+          parts = steady::read_step_parts(path);
+          for (const steady::StepPart& p : parts) {
+            props.push_back(properties(p.shape));
+            texts.push_back(steady::brep_to_text(p.shape));
+          }
+        }
+        py::list out;
+        for (std::size_t i = 0; i < parts.size(); ++i) {
+          py::dict d = to_dict(props[i]);
+          d["name"] = parts[i].name;
+          d["color"] = parts[i].has_color
+                           ? py::object(py::make_tuple(parts[i].color[0], parts[i].color[1], parts[i].color[2]))
+                           : py::none();
+          d["brep"] = texts[i];
+          out.append(d);
+        }
+        return out;
+      },
+      py::arg("path"), "The parts of a STEP file as read by OpenCASCADE: [{name, color, brep, valid, volume, faces, solids}].");
+}
+
+}  // namespace steadypy

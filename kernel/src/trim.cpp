@@ -1,0 +1,392 @@
+#include "steady/trim.hpp"
+
+#include <BRepAlgoAPI_BooleanOperation.hxx>
+#include <BRepAlgoAPI_Common.hxx>
+#include <BRepAlgoAPI_Cut.hxx>
+#include <BRepAlgoAPI_Fuse.hxx>
+#include <BRepBuilderAPI_Copy.hxx>
+#include <BRep_Builder.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_ListOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <unordered_map>
+
+#include "steady/beam_frustum.hpp"
+#include "steady/brep_builder.hpp"
+#include "steady/clean_check.hpp"
+#include "steady/errors.hpp"
+#include "steady/skin.hpp"
+#include "steady/solid_body.hpp"
+
+namespace steady {
+
+TrimPolicy trim_policy_from_string(const std::string& name) {
+  if (name == "clip") return TrimPolicy::Clip;
+  if (name == "whole") return TrimPolicy::Whole;
+  fail_input("policy", "must be 'clip' or 'whole' (got '" + name + "')");
+}
+
+DanglingBeams dangling_from_string(const std::string& name) {
+  if (name == "keep") return DanglingBeams::Keep;
+  if (name == "remove") return DanglingBeams::Remove;
+  fail_input("dangling", "must be 'keep' or 'remove' (got '" + name + "')");
+}
+
+namespace {
+
+// A hub's bounding ball may come this close (relative to the body's size) to the boundary and still count as
+// clear of it: far below any feature, far above the exact distance's own accuracy.
+constexpr double kClearanceRelative = 1e-9;
+
+enum class HubState : char { Absent, Inside, Outside, Crossing };
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+// Radius of the ball around a node center that holds its hub: the node ball and each half-beam up to the cut.
+std::vector<double> hub_bounding_radii(const FlatLattice& f, const std::vector<BeamFrustum>& frustums) {
+  std::vector<double> r(f.ball_count());
+  tbb::parallel_for(std::int64_t(0), f.ball_count(), [&](std::int64_t i) {
+    double rb = f.balls[i].radius;
+    for (const std::int64_t* e = f.incident_begin(i); e != f.incident_end(i); ++e) {
+      const BeamFrustum& fr = frustums[*e];
+      if (!fr.exists) continue;
+      const double x = f.beams[*e].a == i ? fr.cut_position() : fr.cone.length - fr.cut_position();
+      const double rc = fr.cone.radius_at(fr.cut_position());
+      rb = std::max(rb, std::hypot(x, rc));
+    }
+    r[i] = rb;
+  });
+  return r;
+}
+
+// Inside / outside / crossing of every (non-absorbed) hub against a body's boundary.
+std::vector<HubState> classify_hubs(const FlatLattice& f, const std::vector<char>& absorbed,
+                                    const std::vector<double>& radius, const SolidBody& body, TrimStats& stats) {
+  const std::int64_t n = f.ball_count();
+  std::vector<HubState> state(n, HubState::Absent);
+  std::vector<double> lower(n, 0.0);
+  tbb::parallel_for(std::int64_t(0), n, [&](std::int64_t i) {
+    if (!absorbed[i]) lower[i] = body.distance_lower_bound(f.balls[i].center);
+  });
+  const double clearance = kClearanceRelative * body.size();
+  std::vector<char> clear(n, 0);
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (absorbed[i]) continue;
+    if (lower[i] > radius[i] + clearance) {
+      clear[i] = 1;
+      continue;
+    }
+    ++stats.exact_distance_tests;
+    if (body.exact_distance(f.balls[i].center) > radius[i] + clearance)
+      clear[i] = 1;
+    else
+      state[i] = HubState::Crossing;
+  }
+  // Hubs clear of the boundary and joined by a beam are on the same side: the segment between their centers lies
+  // in the union of their bounding balls. One exact classification per connected region.
+  std::vector<std::int64_t> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](std::int64_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (const FlatBeam& b : f.beams)
+    if (clear[b.a] && clear[b.b]) parent[find(b.a)] = find(b.b);
+  std::vector<char> root_state(n, 0);  // 0 unknown, 1 inside, 2 outside
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (!clear[i]) continue;
+    const std::int64_t r = find(i);
+    if (!root_state[r]) root_state[r] = body.contains(f.balls[i].center) ? 1 : 2;
+    state[i] = root_state[r] == 1 ? HubState::Inside : HubState::Outside;
+  }
+  return state;
+}
+
+TopoDS_Shape compound_of(const std::vector<TopoDS_Shape>& shapes) {
+  TopoDS_Compound c;
+  const BRep_Builder b;
+  b.MakeCompound(c);
+  for (const TopoDS_Shape& s : shapes) b.Add(c, s);
+  return c;
+}
+
+// One Boolean, non-destructive (the arguments' untouched sub-shapes, such as the disks at interface cuts, come
+// out as the very same shapes), parallel.
+TopoDS_Shape run_boolean(BRepAlgoAPI_BooleanOperation& op, const TopoDS_Shape& a, const TopoDS_Shape& b,
+                         const char* what) {
+  TopTools_ListOfShape args, tools;
+  args.Append(a);
+  tools.Append(b);
+  op.SetArguments(args);
+  op.SetTools(tools);
+  op.SetNonDestructive(Standard_True);
+  op.SetRunParallel(Standard_True);
+  op.Build();
+  if (!op.IsDone() || op.HasErrors()) {
+    std::ostringstream os;
+    os << "OpenCASCADE's " << what << " of the boundary hubs failed";
+    if (op.HasErrors()) {
+      os << ": ";
+      op.DumpErrors(os);
+    }
+    throw std::runtime_error(os.str());
+  }
+  return op.Shape();
+}
+
+}  // namespace
+
+TrimResult trim_lattice(const FlatLattice& f, const TopoDS_Shape& body_shape, const TrimOptions& options) {
+  if (!std::isfinite(options.skin) || options.skin < 0.0) {
+    std::ostringstream os;
+    os << "must be a thickness >= 0 (got " << options.skin << ")";
+    fail_input("skin", os.str());
+  }
+  TrimResult out;
+  TrimStats& stats = out.stats;
+  auto clock = std::chrono::steady_clock::now();
+  const SolidBody body(body_shape, "body");
+  std::optional<Skin> skin;
+  std::optional<SolidBody> inner;
+  if (options.skin > 0.0) {
+    skin = make_skin(body, options.skin);
+    inner.emplace(skin->inner, "skin");
+    out.skin = skin->skin;
+  }
+  const std::vector<BeamFrustum> frustums = beam_frustums(f);
+  const std::vector<char> absorbed = absorbed_balls(f, frustums);
+  const std::vector<double> radius = hub_bounding_radii(f, frustums);
+  const std::vector<HubState> outer_state = classify_hubs(f, absorbed, radius, body, stats);
+  std::vector<HubState> inner_state = outer_state;
+  if (inner) inner_state = classify_hubs(f, absorbed, radius, *inner, stats);
+  stats.classify_seconds = seconds_since(clock);
+
+  // Roles: interior hubs are built whole with no Boolean; band hubs go through the Booleans.
+  const std::int64_t n = f.ball_count();
+  std::vector<char> interior(n, 0), band(n, 0);
+  bool any_in_body = false;
+  for (std::int64_t i = 0; i < n; ++i) {
+    const HubState o = outer_state[i], s = inner_state[i];
+    if (o == HubState::Absent) continue;
+    any_in_body = any_in_body || o != HubState::Outside;
+    stats.inside_hubs += s == HubState::Inside;
+    stats.outside_hubs += s == HubState::Outside;
+    stats.crossing_hubs += s == HubState::Crossing;
+    if (options.policy == TrimPolicy::Clip) {
+      interior[i] = s == HubState::Inside;
+      band[i] = s == HubState::Crossing;
+    } else {
+      // Whole: only hubs entirely inside the body; with a skin, those crossing its inner boundary fuse with it.
+      interior[i] = o == HubState::Inside && s == HubState::Inside;
+      band[i] = skin && o == HubState::Inside && s == HubState::Crossing;
+    }
+  }
+  if (!any_in_body)
+    fail_input("body", "the lattice does not meet the body (all " + std::to_string(n) + " hubs lie outside it)");
+  const bool nothing_kept = std::none_of(interior.begin(), interior.end(), [](char c) { return c; }) &&
+                            std::none_of(band.begin(), band.end(), [](char c) { return c; });
+  if (nothing_kept) {
+    if (options.policy == TrimPolicy::Whole)
+      fail_input("policy", "'whole' keeps only hubs entirely inside the body, and none is: the trimmed lattice is empty");
+    fail_input("skin", "leaves no room for the lattice: no hub reaches inside the inner offset");
+  }
+
+  // Beams: kept unless both hubs are dropped, or one is and dangling beams are removed.
+  std::vector<char> beam_kept(f.beam_count(), 0), band_beams(f.beam_count(), 0), interior_beams(f.beam_count(), 0);
+  std::vector<char> open_cuts(f.beam_count(), 0);
+  for (std::int64_t e = 0; e < f.beam_count(); ++e) {
+    if (!frustums[e].exists) continue;
+    const std::int64_t a = f.beams[e].a, b = f.beams[e].b;
+    const bool ka = interior[a] || band[a], kb = interior[b] || band[b];
+    if (!ka && !kb) continue;
+    if ((!ka || !kb) && options.dangling == DanglingBeams::Remove) {
+      ++stats.removed_beams;
+      continue;
+    }
+    beam_kept[e] = 1;
+    band_beams[e] = band[a] || band[b];
+    interior_beams[e] = interior[a] || interior[b];
+    if ((band[a] && interior[b]) || (band[b] && interior[a])) {
+      open_cuts[e] = 1;
+    }
+  }
+
+  // Band hubs are clipped in independent clusters, in parallel: a beam between two band hubs is split at its cut
+  // (each side closed by its own disk) when that disk is clear of every boundary the Booleans use, so each side
+  // comes out of its Boolean untouched or wholly deleted and the two sides can be glued again.
+  // With a skin to unite, the band meets the inner body in one Boolean (see below) and is not split.
+  const bool unite = skin && options.unite_skin;
+  std::vector<const SolidBody*> boundaries;
+  if (options.policy == TrimPolicy::Clip && !unite) boundaries.push_back(inner ? &*inner : &body);
+  const bool clusters_wanted = !boundaries.empty();
+  const double clearance = kClearanceRelative * body.size();
+  std::vector<char> split(f.beam_count(), 0);
+  std::vector<std::int64_t> cluster_parent(n);
+  std::iota(cluster_parent.begin(), cluster_parent.end(), 0);
+  auto find = [&](std::int64_t x) {
+    while (cluster_parent[x] != x) x = cluster_parent[x] = cluster_parent[cluster_parent[x]];
+    return x;
+  };
+  for (std::int64_t e = 0; e < f.beam_count(); ++e) {
+    if (!beam_kept[e] || !band[f.beams[e].a] || !band[f.beams[e].b]) continue;
+    if (!clusters_wanted) {
+      cluster_parent[find(f.beams[e].a)] = find(f.beams[e].b);
+      continue;
+    }
+    const Circle cut = frustums[e].cut_circle();
+    bool clear = true;
+    for (const SolidBody* b : boundaries) {
+      if (b->distance_lower_bound(cut.center) > cut.radius + clearance) continue;
+      ++stats.exact_distance_tests;
+      clear = clear && b->exact_distance(cut.center) > cut.radius + clearance;
+    }
+    if (clear)
+      split[e] = 1;
+    else
+      cluster_parent[find(f.beams[e].a)] = find(f.beams[e].b);
+  }
+  // A clear cut inside one cluster stays whole: its two disks would be coincident faces of one Boolean argument.
+  for (std::int64_t e = 0; e < f.beam_count(); ++e)
+    if (split[e] && find(f.beams[e].a) == find(f.beams[e].b)) split[e] = 0;
+
+  clock = std::chrono::steady_clock::now();
+  CutEdges cuts;
+  BrepPieces band_pieces;
+  const bool has_band = std::any_of(band.begin(), band.end(), [](char c) { return c; });
+  if (has_band) {
+    BrepSelection sel;
+    sel.balls = band;
+    sel.beams = band_beams;
+    sel.split = split;
+    band_pieces = build_brep_pieces(f, sel, cuts);
+  }
+  BrepSelection sel;
+  sel.balls = interior;
+  sel.beams = interior_beams;
+  sel.open_cuts = open_cuts;
+  BrepPieces interior_pieces = build_brep_pieces(f, sel, cuts);
+  stats.build_seconds = seconds_since(clock);
+
+  clock = std::chrono::steady_clock::now();
+  std::vector<TopoDS_Face> faces = interior_pieces.faces;
+  if (has_band) {
+    // Clusters and their faces.
+    std::unordered_map<std::int64_t, int> cluster_index;
+    std::vector<std::vector<TopoDS_Face>> cluster_faces;
+    std::vector<int> face_cluster(band_pieces.faces.size());
+    for (std::size_t k = 0; k < band_pieces.faces.size(); ++k) {
+      const std::int64_t root = find(band_pieces.face_owner[k]);
+      auto [it, inserted] = cluster_index.emplace(root, static_cast<int>(cluster_faces.size()));
+      if (inserted) cluster_faces.emplace_back();
+      cluster_faces[it->second].push_back(band_pieces.faces[k]);
+      face_cluster[k] = it->second;
+    }
+    stats.band_clusters = static_cast<std::int64_t>(cluster_faces.size());
+    // Disks to remove after the Booleans: toward interior hubs, and between split band hubs.
+    enum class Fate : char { Present, Deleted, Modified };
+    struct Removed {
+      const CutCap* cap;
+      int cluster;
+      Fate fate = Fate::Present;
+    };
+    std::vector<Removed> removed;
+    std::unordered_map<const void*, std::size_t> removed_index;
+    {
+      std::unordered_map<const void*, int> cluster_of_face;
+      for (std::size_t k = 0; k < band_pieces.faces.size(); ++k)
+        cluster_of_face.emplace(band_pieces.faces[k].TShape().get(), face_cluster[k]);
+      for (const CutCap& c : band_pieces.caps) {
+        if (!open_cuts[c.beam] && !split[c.beam]) continue;  // a stump toward a dropped hub keeps its disk
+        removed_index.emplace(c.face.TShape().get(), removed.size());
+        removed.push_back({&c, cluster_of_face.at(c.face.TShape().get())});
+      }
+    }
+    auto track = [&](BRepAlgoAPI_BooleanOperation& op, int cluster) {
+      for (Removed& r : removed) {
+        if ((cluster >= 0 && r.cluster != cluster) || r.fate != Fate::Present) continue;
+        if (op.IsDeleted(r.cap->face))
+          r.fate = Fate::Deleted;
+        else if (!op.Modified(r.cap->face).IsEmpty())
+          r.fate = Fate::Modified;
+      }
+    };
+    const TopoDS_Shape* tool = nullptr;
+    const char* what = "";
+    if (options.policy == TrimPolicy::Clip && !unite) {
+      tool = skin ? &skin->inner : &body.solid();
+      what = skin ? "Common with the inner body" : "Common with the body";
+    }
+    std::vector<TopoDS_Shape> results(cluster_faces.size());
+    tbb::enumerable_thread_specific<TopoDS_Shape> tool_copies;
+    tbb::parallel_for(std::size_t(0), cluster_faces.size(), [&](std::size_t c) {
+      const TopoDS_Shape solid = solids_from_faces(cluster_faces[c]);
+      if (!tool) {
+        results[c] = solid;
+        return;
+      }
+      // Each thread clips against its own copy of the body: the Booleans then share no mutable data.
+      TopoDS_Shape& copy = tool_copies.local();
+      if (copy.IsNull()) copy = BRepBuilderAPI_Copy(*tool).Shape();
+      BRepAlgoAPI_Common op;
+      results[c] = run_boolean(op, solid, copy, what);
+      track(op, static_cast<int>(c));
+    });
+    TopoDS_Shape merged = compound_of(results);
+    bool pores = false;
+    if (unite) {
+      // skin U (band n body) = body \ (inner \ band): the band only meets the inner boundary, never the outer
+      // one (what it has outside the body falls away by itself), and no two faces of the Boolean coincide. The
+      // part is the body with the pores, inner \ band, as voids.
+      BRepAlgoAPI_Cut op;
+      merged = run_boolean(op, skin->inner, merged, "Cut of the inner body by the boundary hubs");
+      track(op, -1);
+      pores = true;
+      for (TopExp_Explorer x(body.solid(), TopAbs_FACE); x.More(); x.Next()) faces.push_back(TopoDS::Face(x.Current()));
+    }
+    // Every interface disk must come out untouched; the two disks of a split beam must share their fate.
+    std::unordered_map<std::int64_t, int> split_present;
+    for (const Removed& r : removed) {
+      if (r.fate == Fate::Modified || (open_cuts[r.cap->beam] && r.fate != Fate::Present))
+        throw std::runtime_error("trim: the disk closing beam " + std::to_string(r.cap->beam) + " (" +
+                                 (split[r.cap->beam] ? "split" : "interface") + ", fate " + std::to_string(int(r.fate)) +
+                                 ") at its cut was modified by a Boolean; the pieces cannot be glued");
+      if (split[r.cap->beam]) split_present[r.cap->beam] += r.fate == Fate::Present ? 1 : 0;
+    }
+    for (const auto& [beam, present] : split_present)
+      if (present == 1)
+        throw std::runtime_error("trim: only one side of the cut of beam " + std::to_string(beam) + " survived");
+    for (TopExp_Explorer x(merged, TopAbs_FACE); x.More(); x.Next())
+      if (!removed_index.count(x.Current().TShape().get()))
+        faces.push_back(TopoDS::Face(pores ? x.Current().Reversed() : x.Current()));
+  } else if (skin && options.unite_skin) {
+    for (TopExp_Explorer x(skin->skin, TopAbs_FACE); x.More(); x.Next()) faces.push_back(TopoDS::Face(x.Current()));
+  }
+  stats.boolean_seconds = seconds_since(clock);
+  clock = std::chrono::steady_clock::now();
+  if (faces.empty()) fail_input("body", "nothing of the lattice lies inside the body");
+  const TopoDS_Shape shape = solids_from_faces(faces);
+  if (skin && !options.unite_skin) {
+    out.lattice = shape;
+    out.part = compound_of({out.skin, out.lattice});
+  } else {
+    out.part = shape;
+    out.lattice = shape;
+  }
+  stats.faces = static_cast<std::int64_t>(faces.size());
+  stats.assemble_seconds = seconds_since(clock);
+  return out;
+}
+
+}  // namespace steady

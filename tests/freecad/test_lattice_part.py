@@ -1,0 +1,144 @@
+"""LatticePart inside FreeCAD: a lattice trimmed into a body, with and without a skin, against an independent
+Monte Carlo volume; parametric re-trimming; bad input; save and reload; STEP assembly."""
+import math
+import os
+import tempfile
+import unittest
+
+import numpy as np
+
+import FreeCAD
+import Part
+
+import steadylattice as sl
+from brute_force import inside_lattice
+from latticewb import api
+
+
+def monte_carlo_volume(lattice, in_body, lo, hi, samples=60000, seed=3):
+    """Volume of lattice intersected with the body, and its standard error."""
+    rng = np.random.default_rng(seed)
+    points = rng.uniform(lo, hi, size=(samples, 3))
+    hit = inside_lattice(points, lattice) & in_body(points)
+    box = float(np.prod(np.array(hi) - np.array(lo)))
+    p = hit.mean()
+    return box * p, box * math.sqrt(p * (1 - p) / samples)
+
+
+class LatticePartTest(unittest.TestCase):
+    def setUp(self):
+        self.doc = FreeCAD.newDocument("LatticePartTest")
+        # a clean cubic lattice (beams half as wide as their nodes, 90 degrees apart)
+        self.lattice = api.make_lattice(self.doc, preset="cubic", cells=(4, 4, 3), cell_size=10.0,
+                                        node_radius=2.0, beam_radius=1.0)
+        self.body = self.doc.addObject("Part::Cylinder", "Body")
+        self.body.Radius, self.body.Height = 17.0, 26.0
+        self.body.Placement.Base = FreeCAD.Vector(20, 20, 2)
+        self.doc.recompute()
+
+    def tearDown(self):
+        FreeCAD.closeDocument(self.doc.Name)
+
+    def in_cylinder(self, points, inset=0.0):
+        r = self.body.Radius.Value - inset
+        d = points[:, :2] - (20.0, 20.0)
+        return (np.einsum("ij,ij->i", d, d) <= r * r) & (points[:, 2] >= 2.0 + inset) & (points[:, 2] <= 28.0 - inset)
+
+    def test_clip_matches_monte_carlo(self):
+        part = api.make_part(self.doc, self.lattice, self.body, policy="clip")
+        self.doc.recompute()
+        self.assertTrue(part.isValid())
+        self.assertTrue(part.Shape.isValid())
+        expected, sigma = monte_carlo_volume(api.lattice(self.lattice), self.in_cylinder, (3, 3, 2), (37, 37, 28))
+        self.assertLess(abs(part.Volume - expected), 4 * sigma + 1e-9, (part.Volume, expected, sigma))
+        self.assertAlmostEqual(part.Volume, part.Shape.Volume, places=6)
+
+    def test_whole_policy_keeps_only_hubs_inside(self):
+        clip = api.make_part(self.doc, self.lattice, self.body, policy="clip")
+        whole = api.make_part(self.doc, self.lattice, self.body, policy="whole")
+        self.doc.recompute()
+        self.assertTrue(whole.Shape.isValid())
+        self.assertLess(whole.Volume, clip.Volume)
+        # no piece of a whole-hub part leaves the body
+        self.assertTrue(self.body.Shape.BoundBox.isInside(whole.Shape.BoundBox))
+
+    def test_skin_is_one_solid_and_grows_the_volume(self):
+        part = api.make_part(self.doc, self.lattice, self.body, skin=1.5)
+        self.doc.recompute()
+        self.assertTrue(part.isValid())
+        self.assertEqual(len(part.Shape.Solids), 1)
+        self.assertTrue(part.Shape.isValid())
+        # the skin alone is the cylinder minus its inward offset: a lower bound of the part's volume
+        r, h, t = 17.0, 26.0, 1.5
+        shell = math.pi * r * r * h - math.pi * (r - t) ** 2 * (h - 2 * t)
+        self.assertGreater(part.Volume, shell)
+        lattice_inside, sigma = monte_carlo_volume(api.lattice(self.lattice), lambda p: self.in_cylinder(p, t),
+                                                   (3, 3, 2), (37, 37, 28))
+        self.assertLess(abs(part.Volume - (shell + lattice_inside)), 4 * sigma + 1e-6)
+
+    def test_editing_the_body_retrims(self):
+        part = api.make_part(self.doc, self.lattice, self.body)
+        self.doc.recompute()
+        before = part.Volume
+        self.body.Radius = 12.0
+        self.doc.recompute()
+        self.assertTrue(part.isValid())
+        self.assertLess(part.Volume, before)
+        self.lattice.BeamRadius = 0.7
+        self.doc.recompute()
+        self.assertTrue(part.isValid())
+
+    def test_bad_input_gives_a_message_and_keeps_the_document(self):
+        part = api.make_part(self.doc, self.lattice, self.body)
+        self.doc.recompute()
+        volume = part.Volume
+        far = self.doc.addObject("Part::Box", "Far")
+        far.Placement.Base = FreeCAD.Vector(500, 500, 500)
+        face = self.doc.addObject("Part::Plane", "Face")
+        self.doc.recompute()
+        for body in (far, face):
+            part.Body = body
+            self.doc.recompute()
+            self.assertIn("Invalid", part.State, body.Name)
+        part.Body = self.body
+        part.Skin = 40.0  # thicker than the body
+        self.doc.recompute()
+        self.assertIn("Invalid", part.State)
+        part.Skin = -1.0  # clamped
+        self.assertEqual(part.Skin.Value, 0.0)
+        self.doc.recompute()
+        self.assertTrue(part.isValid())
+        self.assertAlmostEqual(part.Volume, volume, places=6)
+        with self.assertRaises(ValueError):
+            api.make_part(self.doc, self.body, self.body)
+        with self.assertRaises(ValueError):
+            api.make_part(self.doc, self.lattice, self.body, policy="nearest")
+
+    def test_save_reload_and_step_assembly(self):
+        part = api.make_part(self.doc, self.lattice, self.body, skin=1.5)
+        self.doc.recompute()
+        volume = part.Volume
+        folder = tempfile.mkdtemp()
+        step = api.export([part], os.path.join(folder, "part.step"))
+        parts = sl.read_step(step)
+        names = sorted(p["name"] for p in parts)
+        self.assertEqual(names, sorted([part.Label + " lattice", part.Label + " skin"]))
+        self.assertTrue(all(p["valid"] and p["color"] is not None for p in parts))
+        # BRepGProp integrates trimmed faces numerically (~1e-5 relative here), and the two parts split the solid
+        # along other faces than the fused part: compare at 1e-4
+        self.assertAlmostEqual(sum(p["volume"] for p in parts), volume, delta=1e-4 * volume)
+        self.assertAlmostEqual(Part.read(step).Volume, volume, delta=1e-4 * volume)  # FreeCAD reads it too
+        path = os.path.join(folder, "part.FCStd")
+        self.doc.saveAs(path)
+        name, lattice_name = part.Name, self.lattice.Name
+        FreeCAD.closeDocument(self.doc.Name)
+        self.doc = FreeCAD.openDocument(path)
+        again = self.doc.getObject(name)
+        self.assertEqual(again.Lattice.Name, lattice_name)
+        again.touch()
+        self.doc.recompute()
+        self.assertAlmostEqual(again.Volume, volume, places=6)
+
+
+if __name__ == "__main__":
+    unittest.main()

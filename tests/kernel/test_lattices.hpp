@@ -1,0 +1,76 @@
+#pragma once
+// Lattices shared by the clean-check, B-rep and trimming tests: strut lattices with explicit beam radii whose
+// steps are translations, swirls, screws or general similarities close to a unit step.
+#include <random>
+
+#include "steady/lattice.hpp"
+#include "test_support.hpp"
+
+namespace steady::test {
+
+enum class StepKind { Translation, Swirl, Screw, General };
+
+// A cubic strut lattice (one node per group, beams along the three steps) with node radius `node_radius` in
+// template units and beam radii drawn in [0.3, 0.6] * node_radius (exit caps of at most 37 degrees, disjoint at
+// 90 degrees with room for the distortion of the steps); the steps
+// are near-unit steps of the given kind, so the lattice is clean for node radii up to about 0.3.
+inline Lattice strut_lattice(std::mt19937_64& rng, StepKind kind, Counts counts, double node_radius = 0.25) {
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  auto beam_radius = [&] { return node_radius * (0.3 + 0.3 * u01(rng)); };
+  LatticeDefinition d;
+  d.nodes = {{{0, 0, 0}, node_radius}};
+  for (int axis = 0; axis < 3; ++axis) {
+    BeamPattern p{0, axis == 0, axis == 1, axis == 2, 0, beam_radius(), beam_radius()};
+    d.beams.push_back(p);
+  }
+  d.counts = counts;
+  const Vec3 e[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  Similarity steps[3];
+  for (int a = 0; a < 3; ++a) {
+    switch (kind) {
+      case StepKind::Translation: steps[a] = Similarity::translation(e[a] + random_vec(rng, 0.1)); break;
+      case StepKind::Swirl: {
+        // A swirl about a far axis orthogonal to e[a] moves the origin by about one unit along e[a].
+        const Vec3 axis = glm::normalize(glm::cross(e[a], random_unit(rng)));
+        const double angle = 0.05 + 0.05 * u01(rng);
+        const Vec3 center = glm::cross(axis, e[a]) / angle;
+        steps[a] = Similarity::swirl(angle, axis, center, std::exp(0.03 * (2 * u01(rng) - 1)));
+        break;
+      }
+      case StepKind::Screw: {
+        const double angle = 0.1 * (2 * u01(rng) - 1);
+        steps[a] = Similarity::screw(angle, e[a], random_vec(rng, 0.5), 1.0);
+        break;
+      }
+      case StepKind::General:
+        steps[a] = Similarity::swirl(0.04 * (2 * u01(rng) - 1), random_unit(rng), random_vec(rng, 1.0),
+                                     std::exp(0.02 * (2 * u01(rng) - 1))) *
+                   Similarity::translation(e[a]);
+        break;
+    }
+  }
+  d.u = {steps[0]};
+  d.v = {steps[1]};
+  d.w = {steps[2]};
+  d.placement = Similarity::rotation(u01(rng) * 3.0, random_unit(rng), random_vec(rng, 2.0)) *
+                Similarity::dilation(0.5 + 2.0 * u01(rng), Vec3(0.0));
+  return Lattice(std::move(d));
+}
+
+// A body-centred cubic strut lattice: corner node and centre node, eight diagonals; radii as above.
+inline Lattice bcc_lattice(std::mt19937_64& rng, Counts counts, double corner_radius = 0.2, double center_radius = 0.2) {
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  LatticeDefinition d;
+  d.nodes = {{{0, 0, 0}, corner_radius}, {{0.5, 0.5, 0.5}, center_radius}};
+  const double r = 0.06 + 0.02 * u01(rng);
+  for (int di = 0; di <= 1; ++di)
+    for (int dj = 0; dj <= 1; ++dj)
+      for (int dk = 0; dk <= 1; ++dk) d.beams.push_back({1, di, dj, dk, 0, r, r});
+  d.counts = counts;
+  d.u = {Similarity::translation({1, 0, 0})};
+  d.v = {Similarity::translation({0, 1, 0})};
+  d.w = {Similarity::translation({0, 0, 1})};
+  return Lattice(std::move(d));
+}
+
+}  // namespace steady::test

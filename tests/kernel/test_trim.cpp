@@ -1,0 +1,275 @@
+// Trimming into a body, with and without a skin: validity, one solid, and volumes against independent answers:
+// closed forms where the body's faces cut beams square (axis-aligned strut lattice in a box), Monte Carlo with
+// brute-force point membership for curved bodies and graded lattices.
+#include <gtest/gtest.h>
+
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_Transform.hxx>
+#include <BRep_Builder.hxx>
+#include <TopoDS_Compound.hxx>
+#include <gp_Pln.hxx>
+
+#include <random>
+
+#include "steady/brep_builder.hpp"
+#include "steady/brep_io.hpp"
+#include "steady/errors.hpp"
+#include "steady/flat_lattice.hpp"
+#include "steady/trim.hpp"
+#include "test_lattices.hpp"
+
+namespace steady {
+namespace {
+
+// An axis-aligned cubic strut lattice: nodes at integer points of [0, n)^3, beams along x, y, z with end radii
+// that differ (general cones).
+FlatLattice grid_lattice(int n, double node_radius = 0.25) {
+  std::vector<Ball> balls;
+  std::vector<FlatBeam> beams;
+  auto id = [&](int i, int j, int k) { return (k * n + j) * n + i; };
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) balls.push_back({{double(i), double(j), double(k)}, node_radius});
+  const double radii[3][2] = {{0.10, 0.12}, {0.11, 0.09}, {0.08, 0.10}};
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        if (i + 1 < n) beams.push_back({id(i, j, k), id(i + 1, j, k), radii[0][0], radii[0][1]});
+        if (j + 1 < n) beams.push_back({id(i, j, k), id(i, j + 1, k), radii[1][0], radii[1][1]});
+        if (k + 1 < n) beams.push_back({id(i, j, k), id(i, j, k + 1), radii[2][0], radii[2][1]});
+      }
+  return make_flat_lattice(balls, beams);
+}
+
+// Volume of a beam's part from node `from`'s exit plane to the plane at axial distance p from that node's
+// center, minus the cap beyond the exit plane (closed form, computed here from scratch).
+double beam_piece_volume(const FlatLattice& f, const FlatBeam& b, bool from_a, double p) {
+  const Ball& A = f.balls[from_a ? b.a : b.b];
+  const Ball& B = f.balls[from_a ? b.b : b.a];
+  const double ra = from_a ? b.ra : b.rb, rb = from_a ? b.rb : b.ra;
+  const double L = glm::length(B.center - A.center), s = (ra - rb) / L, c = std::sqrt(1 - s * s);
+  const double x = ra * s + std::sqrt(ra * ra * s * s - ra * ra + A.radius * A.radius * c * c);
+  auto radius_at = [&](double t) { return (ra - t * s) / c; };
+  const double r1 = radius_at(x), r2 = radius_at(p), h = p - x, hc = A.radius - x;
+  return M_PI * h * (r1 * r1 + r1 * r2 + r2 * r2) / 3.0 - M_PI * hc * hc * (3 * A.radius - hc) / 3.0;
+}
+
+double ball_volume(const Ball& b) { return 4.0 / 3.0 * M_PI * b.radius * b.radius * b.radius; }
+
+// Exact volume of grid_lattice(n) clipped to the box [lo, hi]^3 whose faces cross beams between their exit
+// planes (never a ball): full balls and beams inside, and pieces of the beams crossing a face.
+double grid_clip_volume(const FlatLattice& f, double lo, double hi) {
+  auto inside = [&](const Vec3& p) { return p.x > lo && p.x < hi && p.y > lo && p.y < hi && p.z > lo && p.z < hi; };
+  double v = 0.0;
+  for (const Ball& b : f.balls)
+    if (inside(b.center)) v += ball_volume(b);
+  for (const FlatBeam& b : f.beams) {
+    const Vec3 a = f.balls[b.a].center, c = f.balls[b.b].center;
+    const bool ia = inside(a), ib = inside(c);
+    if (ia && ib) {
+      v += beam_piece_volume(f, b, true, glm::length(c - a) / 2) + beam_piece_volume(f, b, false, glm::length(c - a) / 2);
+    } else if (ia != ib) {
+      const Vec3 from = ia ? a : c, dir = glm::normalize(ia ? c - a : a - c);
+      // Distance from the inside node to the face the beam crosses.
+      double p = 1e300;
+      for (int k = 0; k < 3; ++k) {
+        if (dir[k] > 0.5) p = hi - from[k];
+        if (dir[k] < -0.5) p = from[k] - lo;
+      }
+      v += beam_piece_volume(f, b, ia, p);
+    }
+  }
+  return v;
+}
+
+TopoDS_Shape box(double lo, double hi) { return BRepPrimAPI_MakeBox(gp_Pnt(lo, lo, lo), gp_Pnt(hi, hi, hi)).Shape(); }
+
+void expect_valid_single_solid(const TopoDS_Shape& s, const std::string& what) {
+  EXPECT_TRUE(is_valid(s)) << what << ":\n" << validity_report(s);
+  EXPECT_EQ(solid_count(s), 1) << what;
+}
+
+TEST(Trim, ClipIntoBoxMatchesClosedForm) {
+  const FlatLattice f = grid_lattice(5);
+  for (double hi : {2.6, 3.4}) {
+    const double lo = -0.4;
+    const TrimResult r = trim_lattice(f, box(lo, hi), {});
+    expect_valid_single_solid(r.part, "clip into box");
+    EXPECT_NEAR(shape_volume(r.part) / grid_clip_volume(f, lo, hi), 1.0, 1e-7);
+    EXPECT_GT(r.stats.inside_hubs, 0);
+    EXPECT_GT(r.stats.crossing_hubs, 0);
+    EXPECT_GT(r.stats.outside_hubs, 0);
+  }
+}
+
+TEST(Trim, WholeKeepsOnlyHubsInsideAndNeverCuts) {
+  const FlatLattice f = grid_lattice(5);
+  // Box [-0.6, 2.6]: hubs at 0..2 have bounding balls inside (they reach 0.5 + beyond), hubs at 3 do not.
+  for (DanglingBeams dangling : {DanglingBeams::Keep, DanglingBeams::Remove}) {
+    TrimOptions o;
+    o.policy = TrimPolicy::Whole;
+    o.dangling = dangling;
+    const TrimResult r = trim_lattice(f, box(-0.6, 2.6), o);
+    expect_valid_single_solid(r.part, "whole");
+    // Expected: every hub with all coordinates in 0..2, beams between them whole, and (keep) half beams to
+    // their neighbours at 3, closed at the cut (the frustum's middle).
+    auto kept = [](const Vec3& p) { return p.x < 2.5 && p.y < 2.5 && p.z < 2.5; };
+    double v = 0.0;
+    for (const Ball& b : f.balls)
+      if (kept(b.center)) v += ball_volume(b);
+    for (const FlatBeam& b : f.beams) {
+      const Vec3 a = f.balls[b.a].center, c = f.balls[b.b].center;
+      const double L = glm::length(c - a);
+      // Cut halfway between the exit planes.
+      const double sa = (b.ra - b.rb) / L, ca = std::sqrt(1 - sa * sa);
+      const double xa = b.ra * sa + std::sqrt(b.ra * b.ra * sa * sa - b.ra * b.ra + 0.0625 * ca * ca);
+      const double xb = -b.rb * sa + std::sqrt(b.rb * b.rb * sa * sa - b.rb * b.rb + 0.0625 * ca * ca);
+      const double cut = 0.5 * (xa + L - xb);
+      if (kept(a) && kept(c)) v += beam_piece_volume(f, b, true, cut) + beam_piece_volume(f, b, false, L - cut);
+      else if (kept(a) && dangling == DanglingBeams::Keep) v += beam_piece_volume(f, b, true, cut);
+      else if (kept(c) && dangling == DanglingBeams::Keep) v += beam_piece_volume(f, b, false, L - cut);
+    }
+    EXPECT_NEAR(shape_volume(r.part) / v, 1.0, 1e-7) << (dangling == DanglingBeams::Keep ? "keep" : "remove");
+    EXPECT_EQ(r.stats.removed_beams > 0, dangling == DanglingBeams::Remove);
+  }
+}
+
+TEST(Trim, SkinUnitedWithLatticeMatchesClosedForm) {
+  const FlatLattice f = grid_lattice(6);
+  // Body [-0.7, 4.7]^3, skin 0.3: the inner box [-0.4, 4.4]^3 cuts beams between exit planes.
+  TrimOptions o;
+  o.skin = 0.3;
+  const TrimResult r = trim_lattice(f, box(-0.7, 4.7), o);
+  expect_valid_single_solid(r.part, "skin and lattice");
+  const double skin_volume = std::pow(5.4, 3) - std::pow(4.8, 3);
+  EXPECT_NEAR(shape_volume(r.skin) / skin_volume, 1.0, 1e-9);
+  EXPECT_NEAR(shape_volume(r.part) / (skin_volume + grid_clip_volume(f, -0.4, 4.4)), 1.0, 1e-7);
+  // Separate parts: the skin and the lattice clipped to the inner box.
+  o.unite_skin = false;
+  const TrimResult parts = trim_lattice(f, box(-0.7, 4.7), o);
+  expect_valid_single_solid(parts.lattice, "lattice part");
+  EXPECT_NEAR(shape_volume(parts.lattice) / grid_clip_volume(f, -0.4, 4.4), 1.0, 1e-7);
+}
+
+// Brute-force membership in the lattice: a node ball, or the convex hull of a beam's two end balls (the union of
+// the balls interpolating them, so the distance to it is a convex function of the interpolation parameter).
+bool in_lattice(const FlatLattice& f, const Vec3& p) {
+  for (const Ball& b : f.balls)
+    if (glm::length(p - b.center) <= b.radius) return true;
+  for (const FlatBeam& b : f.beams) {
+    const Vec3 a = f.balls[b.a].center, c = f.balls[b.b].center;
+    // The hull lies between the segment thickened by the smaller and by the larger radius.
+    const double t0 = std::clamp(glm::dot(p - a, c - a) / glm::dot(c - a, c - a), 0.0, 1.0);
+    const double to_segment = glm::length(p - (a + t0 * (c - a)));
+    if (to_segment > std::max(b.ra, b.rb)) continue;
+    if (to_segment <= std::min(b.ra, b.rb)) return true;
+    auto g = [&](double t) { return glm::length(p - (a + t * (c - a))) - (b.ra + t * (b.rb - b.ra)); };
+    double lo = 0, hi = 1;
+    for (int it = 0; it < 80; ++it) {
+      const double m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
+      (g(m1) < g(m2) ? hi : lo) = (g(m1) < g(m2) ? m2 : m1);
+    }
+    if (g(0.5 * (lo + hi)) <= 0) return true;
+  }
+  return false;
+}
+
+TEST(Trim, CurvedBodiesAndGradedLatticesAgreeWithMonteCarlo) {
+  std::mt19937_64 rng(8);
+  const Lattice lat = test::strut_lattice(rng, test::StepKind::Swirl, {5, 5, 4}, 0.25);
+  const FlatLattice f = flatten(lat);
+  Vec3 lo(1e300), hi(-1e300);
+  for (const Ball& b : f.balls) {
+    lo = glm::min(lo, b.center);
+    hi = glm::max(hi, b.center);
+  }
+  const Vec3 mid = 0.5 * (lo + hi);
+  const double reach = 0.35 * glm::length(hi - lo);
+  // A sphere and a tilted cylinder through the middle of the lattice.
+  const gp_Ax2 axis(gp_Pnt(mid.x, mid.y, mid.z - reach), gp_Dir(0.2, 0.1, 1.0));
+  struct Case {
+    const char* name;
+    TopoDS_Shape body;
+    // Membership in the body shrunk by t (the inner offset), and the body's volume shrunk by t.
+    std::function<bool(const Vec3&, double)> inside;
+    std::function<double(double)> volume;
+  };
+  const Vec3 ax = glm::normalize(Vec3(0.2, 0.1, 1.0)), base(mid.x, mid.y, mid.z - reach);
+  const double cyl_r = 0.6 * reach;
+  std::vector<Case> cases = {
+      {"sphere", BRepPrimAPI_MakeSphere(gp_Pnt(mid.x, mid.y, mid.z), reach).Shape(),
+       [&](const Vec3& p, double t) { return glm::length(p - mid) <= reach - t; },
+       [&](double t) { return 4.0 / 3.0 * M_PI * std::pow(reach - t, 3); }},
+      {"cylinder", BRepPrimAPI_MakeCylinder(axis, cyl_r, 2 * reach).Shape(),
+       [&](const Vec3& p, double t) {
+         const double h = glm::dot(p - base, ax);
+         return h >= t && h <= 2 * reach - t && glm::length(p - base - h * ax) <= cyl_r - t;
+       },
+       [&](double t) { return M_PI * (cyl_r - t) * (cyl_r - t) * (2 * reach - 2 * t); }}};
+  for (const Case& c : cases) {
+    for (double skin : {0.0, 0.2}) {
+      TrimOptions o;
+      o.skin = skin;
+      const TrimResult r = trim_lattice(f, c.body, o);
+      const std::string what = std::string(c.name) + (skin > 0 ? " with skin" : "");
+      expect_valid_single_solid(r.part, what);
+      // Monte Carlo over the body's bounding box: the skin exactly, plus the lattice inside the inner offset.
+      const Vec3 blo = mid - Vec3(reach), bhi = mid + Vec3(reach);
+      std::uniform_real_distribution<double> ux(blo.x, bhi.x), uy(blo.y, bhi.y), uz(blo.z, bhi.z);
+      const int samples = 40000;
+      int hits = 0;
+      for (int k = 0; k < samples; ++k) {
+        const Vec3 p(ux(rng), uy(rng), uz(rng));
+        hits += c.inside(p, skin) && in_lattice(f, p);
+      }
+      const double box_volume = std::pow(2 * reach, 3), frac = double(hits) / samples;
+      const double estimate = frac * box_volume + c.volume(0.0) - c.volume(skin);
+      const double sigma = std::sqrt(frac * (1 - frac) / samples) * box_volume;
+      EXPECT_NEAR(shape_volume(r.part), estimate, 4 * sigma + 1e-9) << what;
+      if (skin > 0) EXPECT_NEAR(shape_volume(r.skin) / (c.volume(0.0) - c.volume(skin)), 1.0, 1e-6) << what;
+    }
+  }
+}
+
+TEST(Trim, BadInputGetsClearMessages) {
+  const FlatLattice f = grid_lattice(4);
+  auto message = [&](const TopoDS_Shape& body, TrimOptions o) -> std::string {
+    try {
+      trim_lattice(f, body, o);
+    } catch (const InvalidInput& e) {
+      return e.what();
+    }
+    return "";
+  };
+  // Not a solid: one face.
+  const TopoDS_Shape face = BRepBuilderAPI_MakeFace(gp_Pln(gp::Origin(), gp::DZ()), -1, 1, -1, 1).Face();
+  EXPECT_NE(message(face, {}).find("body: is not a closed solid"), std::string::npos) << message(face, {});
+  // Two solids.
+  TopoDS_Compound two;
+  BRep_Builder b;
+  b.MakeCompound(two);
+  b.Add(two, box(0, 1));
+  b.Add(two, box(2, 3));
+  EXPECT_NE(message(two, {}).find("body: holds 2 solids"), std::string::npos);
+  // The lattice misses the body.
+  EXPECT_NE(message(box(10, 11), {}).find("does not meet the body"), std::string::npos) << message(box(10, 11), {});
+  // Negative skin, skin thicker than the body.
+  TrimOptions neg;
+  neg.skin = -0.1;
+  EXPECT_NE(message(box(-0.5, 2.5), neg).find("skin: must be a thickness >= 0"), std::string::npos);
+  TrimOptions thick;
+  thick.skin = 2.0;
+  EXPECT_NE(message(box(-0.5, 2.5), thick).find("skin:"), std::string::npos) << message(box(-0.5, 2.5), thick);
+  // Whole with no hub entirely inside.
+  TrimOptions whole;
+  whole.policy = TrimPolicy::Whole;
+  EXPECT_NE(message(box(0.1, 0.9), whole).find("policy:"), std::string::npos) << message(box(0.1, 0.9), whole);
+  EXPECT_THROW(trim_policy_from_string("cut"), InvalidInput);
+  EXPECT_THROW(dangling_from_string("maybe"), InvalidInput);
+}
+
+}  // namespace
+}  // namespace steady

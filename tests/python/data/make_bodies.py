@@ -1,0 +1,22 @@
+"""Writes the BREP bodies the module tests trim lattices into (run once with FreeCAD's Python; the files are
+committed so the tests need no FreeCAD):  /usr/bin/python3 tests/python/data/make_bodies.py"""
+import os
+import sys
+
+sys.path.append("/usr/lib/freecad/lib")
+import FreeCAD  # noqa: E402
+import Part  # noqa: E402
+
+here = os.path.dirname(os.path.abspath(__file__))
+bodies = {
+    # Cuts the beams of a unit cubic lattice 0.4 past the nodes at 0 and 0.6 past the nodes at 2.
+    "box.brep": Part.makeBox(3.0, 3.0, 3.0, FreeCAD.Vector(-0.4, -0.4, -0.4)),
+    # The inner offset of this box by 0.3 is [-0.4, 4.4]^3, which cuts beams between their exit circles.
+    "skin_box.brep": Part.makeBox(5.4, 5.4, 5.4, FreeCAD.Vector(-0.7, -0.7, -0.7)),
+    "cylinder.brep": Part.makeCylinder(1.6, 4.0, FreeCAD.Vector(1.5, 1.5, -0.5), FreeCAD.Vector(0.1, 0.05, 1.0)),
+    "face.brep": Part.makePlane(2.0, 2.0),
+}
+for name, shape in bodies.items():
+    with open(os.path.join(here, name), "w") as f:
+        f.write(shape.exportBrepToString())
+    print(name, shape.ShapeType, round(shape.Volume, 6) if shape.ShapeType == "Solid" else "")

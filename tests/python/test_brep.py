@@ -1,0 +1,159 @@
+"""B-rep parts from the module: the clean check, BREP text of whole and trimmed lattices (validity and volume
+against closed forms computed here), skins, STEP assemblies read back by OpenCASCADE, and bad input."""
+import math
+import os
+
+import numpy as np
+import pytest
+
+import steadylattice as sl
+
+DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data")
+RADII = [(0.10, 0.12), (0.11, 0.09), (0.08, 0.10)]  # (from, to) end radii of the x, y, z beams
+
+
+def body(name):
+    with open(os.path.join(DATA, name)) as f:
+        return f.read()
+
+
+def strut_lattice(n=4, node_radius=0.25):
+    t = sl.Similarity.translation
+    beams = [(0, 1, 0, 0, 0) + RADII[0], (0, 0, 1, 0, 0) + RADII[1], (0, 0, 0, 1, 0) + RADII[2]]
+    return sl.Lattice([((0, 0, 0), node_radius)], beams, (n, n, n), t((1, 0, 0)), t((0, 1, 0)), t((0, 0, 1)))
+
+
+def beam_piece(R, ra, rb, L, p):
+    """Volume of a beam (end radii ra at its node of radius R, rb at the other end, length L) from the plane where
+    it leaves its node to the plane at distance p from the node's center, minus the spherical cap beyond the exit
+    plane. The exit plane solves x^2 + ((ra - x s)/c)^2 = R^2, s = (ra - rb)/L."""
+    s = (ra - rb) / L
+    c = math.sqrt(1 - s * s)
+    x = ra * s + math.sqrt(ra * ra * s * s - ra * ra + R * R * c * c)
+    r1, r2 = (ra - x * s) / c, (ra - p * s) / c
+    h, hc = p - x, R - x
+    return math.pi * h * (r1 * r1 + r1 * r2 + r2 * r2) / 3 - math.pi * hc * hc * (3 * R - hc) / 3
+
+
+def clipped_volume(lat, lo, hi, R=0.25):
+    """Exact volume of the axis-aligned strut lattice clipped to [lo, hi]^3 (faces crossing beams only)."""
+    centers, radii = lat.balls()
+    a, b, ra, rb = lat.beams()
+    inside = np.all((centers > lo) & (centers < hi), axis=1)
+    v = 4 / 3 * math.pi * np.sum(radii[inside] ** 3)
+    for i in range(len(a)):
+        pa, pb = centers[a[i]], centers[b[i]]
+        L = np.linalg.norm(pb - pa)
+        if inside[a[i]] and inside[b[i]]:
+            v += beam_piece(R, ra[i], rb[i], L, L / 2) + beam_piece(R, rb[i], ra[i], L, L / 2)
+        elif inside[a[i]] != inside[b[i]]:
+            first = inside[a[i]]
+            p0 = pa if first else pb
+            d = (pb - pa) / L * (1 if first else -1)
+            k = int(np.argmax(np.abs(d)))
+            p = (hi - p0[k]) if d[k] > 0 else (p0[k] - lo)
+            v += beam_piece(R, ra[i], rb[i], L, p) if first else beam_piece(R, rb[i], ra[i], L, p)
+    return v
+
+
+def test_clean_check_reports_offenders_by_index():
+    lat = strut_lattice(3)
+    report = lat.clean_check()
+    assert report["clean"] and report["issue_count"] == 0
+    # Fat nodes overlap their neighbours.
+    fat = strut_lattice(3, node_radius=0.55)
+    report = fat.clean_check()
+    assert not report["clean"]
+    kinds = {i["kind"] for i in report["issues"]}
+    assert "ball_ball" in kinds
+    first = report["issues"][0]
+    assert first["message"] and first["ball"] >= 0
+
+
+def test_whole_lattice_brep_is_valid_with_exact_volume():
+    lat = strut_lattice(3)
+    props = sl.brep_properties(lat.brep())
+    assert props["valid"], props["report"]
+    assert props["solids"] == 1
+    assert props["faces"] == lat.ball_count + lat.beam_count
+    exact = clipped_volume(lat, -10, 10)
+    assert props["volume"] == pytest.approx(exact, rel=1e-7)
+
+
+def test_trimmed_into_box_matches_closed_form():
+    lat = strut_lattice(4)
+    props = sl.brep_properties(lat.brep(body=body("box.brep")))
+    assert props["valid"], props["report"]
+    assert props["solids"] == 1
+    assert props["volume"] == pytest.approx(clipped_volume(lat, -0.4, 2.6), rel=1e-7)
+
+
+def test_skin_and_step_assembly_round_trip(tmp_path):
+    lat = strut_lattice(6)
+    text = lat.brep(body=body("skin_box.brep"), skin=0.3)
+    props = sl.brep_properties(text)
+    assert props["valid"], props["report"]
+    assert props["solids"] == 1
+    skin_volume = 5.4 ** 3 - 4.8 ** 3
+    lattice_volume = clipped_volume(lat, -0.4, 4.4)
+    assert props["volume"] == pytest.approx(skin_volume + lattice_volume, rel=1e-7)
+
+    path = str(tmp_path / "part.step")
+    lat.write_step(path, body=body("skin_box.brep"), skin=0.3, lattice_name="Gyro lattice", skin_name="Outer skin",
+                   lattice_color=(1.0, 0.5, 0.0), skin_color=(0.0, 0.4, 1.0))
+    parts = {p["name"]: p for p in sl.read_step(path)}
+    assert set(parts) == {"Gyro lattice", "Outer skin"}
+    assert parts["Outer skin"]["volume"] == pytest.approx(skin_volume, rel=1e-6)
+    assert parts["Gyro lattice"]["volume"] == pytest.approx(lattice_volume, rel=1e-6)
+    assert parts["Gyro lattice"]["valid"] and parts["Outer skin"]["valid"]
+    assert parts["Gyro lattice"]["color"] == pytest.approx((1.0, 0.5, 0.0), abs=1e-3)
+    assert parts["Outer skin"]["color"] == pytest.approx((0.0, 0.4, 1.0), abs=1e-3)
+
+
+def test_policies_and_dangling_beams():
+    lat = strut_lattice(5)
+    box = body("box.brep")
+    clip = sl.brep_properties(lat.brep(body=box))
+    whole = sl.brep_properties(lat.brep(body=box, policy="whole"))
+    bare = sl.brep_properties(lat.brep(body=box, policy="whole", dangling="remove"))
+    for p in (clip, whole, bare):
+        assert p["valid"], p["report"]
+    # Whole keeps fewer hubs than clip; removing the dangling stumps takes a little more away.
+    assert bare["volume"] < whole["volume"] < clip["volume"]
+
+
+def test_curved_body_gives_a_valid_solid():
+    lat = strut_lattice(4)
+    props = sl.brep_properties(lat.brep(body=body("cylinder.brep")))
+    assert props["valid"], props["report"]
+    assert 0 < props["volume"] < sl.brep_properties(lat.brep())["volume"]
+
+
+@pytest.mark.parametrize(
+    "kwargs, fragment",
+    [
+        (dict(body=body("face.brep")), "body: is not a closed solid"),
+        (dict(body="not brep"), "body: is not BREP text"),
+        (dict(body=body("box.brep"), skin=-1.0), "skin: must be a thickness >= 0"),
+        (dict(body=body("box.brep"), skin=2.0), "skin:"),
+        (dict(skin=0.5), "skin: needs a body"),
+        (dict(body=body("box.brep"), policy="cut"), "policy: must be 'clip' or 'whole'"),
+        (dict(body=body("box.brep"), dangling="maybe"), "dangling:"),
+        (dict(body=3.0), "body: expected BREP text"),
+    ],
+)
+def test_bad_input_names_the_parameter(kwargs, fragment):
+    with pytest.raises(ValueError) as e:
+        strut_lattice(4).brep(**kwargs)
+    assert fragment in str(e.value)
+
+
+def test_lattice_missing_the_body_and_unclean_lattices_are_refused():
+    far = strut_lattice(2)
+    t = sl.Similarity.translation
+    far = sl.Lattice([((0, 0, 0), 0.25)], [(0, 1, 0, 0, 0) + RADII[0]], (2, 1, 1), t((1, 0, 0)), t((0, 1, 0)),
+                     t((0, 0, 1)), G=t((20, 20, 20)))
+    with pytest.raises(ValueError, match="does not meet the body"):
+        far.brep(body=body("box.brep"))
+    with pytest.raises(ValueError, match="lattice: is not clean"):
+        strut_lattice(3, node_radius=0.55).brep()
