@@ -97,3 +97,21 @@ class WorkbenchGuiTest(unittest.TestCase):
         self.doc.undo()
         self.assertAlmostEqual(obj.TaperU, 0.0)
         self.assertAlmostEqual(obj.BeamRadius.Value, 0.8)
+
+    def test_properties_report_command(self):
+        from latticewb import api
+        FreeCADGui.activateWorkbench("LatticeWorkbench")
+        obj = api.make_lattice(self.doc, preset="BCC", cells=(2, 2, 2), node_radius=1.5, beam_radius=0.6)
+        obj.Density = 4.43
+        self.doc.recompute()
+        FreeCADGui.Selection.clearSelection()
+        FreeCADGui.Selection.addSelection(obj)
+        FreeCADGui.runCommand("Lattice_Properties")
+        wait_for_recompute(0.3)
+        boxes = [w for w in QtGui.QApplication.topLevelWidgets()
+                 if isinstance(w, QtGui.QMessageBox) and w.isVisible()]
+        self.assertEqual(len(boxes), 1)
+        text = boxes[0].text()
+        self.assertIn("closed form", text)
+        self.assertIn("%.6g mm^3" % api.properties(obj)["volume"], text)
+        boxes[0].close()

@@ -107,6 +107,26 @@ def make_filter(doc, source, kind="stencil", **params):
     return lattice_filter.make_lattice_filter(doc, source, kind, **values)
 
 
+def properties(obj):
+    """Mass properties of a SteadyLattice (closed form from the kernel) or of a part or any solid (B-rep
+    integration): a dict with volume (mm^3), area (mm^2), centroid (mm), inertia (3x3 about the centroid, kg mm^2),
+    mass (kg) and density (g/cm^3, the object's Density property, 1 when it has none), and the method used.
+    A lattice whose hubs overlap raises ValueError naming them."""
+    from latticewb.features import mass_properties
+    return mass_properties.properties(obj)
+
+
+def target_density(obj, relative_density=None, mass=None):
+    """Scales every radius of a SteadyLattice so that it reaches a relative density (its volume over the volume of
+    its box of cells) or a mass in kg (at its Density); returns the factor applied. Recompute to rebuild."""
+    from latticewb.features import mass_properties
+    if not hasattr(obj, "Preset"):
+        raise ValueError("obj: expected a SteadyLattice")
+    scale = mass_properties.scale_for_target(obj, relative_density=relative_density, mass=mass)
+    mass_properties.apply_radius_scale(obj, scale)
+    return scale
+
+
 def lattice(obj):
     """The steadylattice.Lattice of a SteadyLattice object, placed by the object's Placement.
     Its group indices (i, j, k) follow the order the steps apply in, obj.AppliedOrder (for example "VWU": i counts

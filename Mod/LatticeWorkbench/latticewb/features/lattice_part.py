@@ -44,6 +44,8 @@ class LatticePart:
             obj.Dangling = "keep"
         for name in ("Volume", "FaceCount"):
             obj.setEditorMode(name, 1)
+        from latticewb.features import mass_properties
+        mass_properties.add_density_property(obj)
 
     def onDocumentRestored(self, obj):
         self.ensure_properties(obj)

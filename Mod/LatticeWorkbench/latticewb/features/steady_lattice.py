@@ -12,7 +12,7 @@ The object's own Placement places the whole lattice (the papers' base frame G).
 import FreeCAD
 
 from latticewb import presets
-from latticewb.features import grading, lattice_shape, property_checks
+from latticewb.features import grading, lattice_shape, mass_properties, property_checks
 
 CUSTOM = "custom"
 LAYOUTS = ["grading", "steps", "frames"]
@@ -140,6 +140,7 @@ class SteadyLattice:
         default("PreviewBudget", (2000000, 1000, 100000000, 100000))
         for name in ("AppliedOrder", "BallCount", "BeamCount"):
             obj.setEditorMode(name, 1)  # read only
+        mass_properties.add_density_property(obj)
         update_visible_groups(obj)
 
     def onDocumentRestored(self, obj):

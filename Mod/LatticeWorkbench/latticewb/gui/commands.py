@@ -121,6 +121,80 @@ class FilterCommand:
         FreeCADGui.Selection.addSelection(obj)
 
 
+class PropertiesCommand:
+    """Reports volume, area, centroid, mass and inertia of the selected lattices and parts."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": resources.icon("Properties"),
+            "MenuText": "Properties report",
+            "ToolTip": "Volume, area, centroid, mass (from the Density property) and inertia tensor of the selected "
+                       "lattices (closed form, exact) and parts (B-rep integration)",
+        }
+
+    def IsActive(self):
+        return bool(FreeCADGui.Selection.getSelection())
+
+    def Activated(self):
+        from PySide import QtGui
+        from latticewb import api
+        from latticewb.features import mass_properties
+        texts = []
+        for obj in FreeCADGui.Selection.getSelection():
+            try:
+                texts.append(mass_properties.report_text(obj, api.properties(obj)))
+            except ValueError as error:
+                texts.append("%s: %s" % (obj.Label, error))
+        text = "\n\n".join(texts)
+        FreeCAD.Console.PrintMessage(text + "\n")
+        box = QtGui.QMessageBox(FreeCADGui.getMainWindow())
+        box.setWindowTitle("Lattice properties")
+        box.setText("<pre>%s</pre>" % text)
+        box.show()  # not modal: the numbers stay beside the model
+
+
+class DensityTargetCommand:
+    """Scales the radii of the selected lattice to reach a relative density or a mass."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": resources.icon("DensityTarget"),
+            "MenuText": "Density target...",
+            "ToolTip": "Scale every radius of the selected lattice so that it reaches a relative density (of its "
+                       "box of cells) or a mass; solved with the closed-form volume",
+        }
+
+    def IsActive(self):
+        return any(hasattr(o, "Preset") for o in FreeCADGui.Selection.getSelection())
+
+    def Activated(self):
+        from PySide import QtGui
+        from latticewb import api
+        obj = [o for o in FreeCADGui.Selection.getSelection() if hasattr(o, "Preset")][0]
+        choice, ok = QtGui.QInputDialog.getItem(FreeCADGui.getMainWindow(), "Density target", "Target:",
+                                                ["relative density (%)", "mass (g)"], 0, False)
+        if not ok:
+            return
+        value, ok = QtGui.QInputDialog.getDouble(FreeCADGui.getMainWindow(), "Density target", choice, 20.0, 1e-6,
+                                                 1e9, 4)
+        if not ok:
+            return
+        doc = obj.Document
+        doc.openTransaction("Density target")
+        try:
+            if choice.startswith("relative"):
+                scale = api.target_density(obj, relative_density=value / 100.0)
+            else:
+                scale = api.target_density(obj, mass=value / 1000.0)
+            doc.recompute()
+        except ValueError as error:
+            doc.abortTransaction()
+            FreeCAD.Console.PrintError("Density target: %s\n" % error)
+            return
+        doc.commitTransaction()
+        FreeCAD.Console.PrintMessage("%s: radii scaled by %.6g\n" % (obj.Label, scale))
+
+
 class ExportCommand:
     """Exports the selected objects to STEP (one named part per object), BREP or a lattice file (JSON)."""
 
@@ -156,11 +230,14 @@ COMMANDS = {
     "Lattice_NewLattice": NewLatticeCommand(),
     "Lattice_Part": LatticePartCommand(),
     "Lattice_Filter": FilterCommand(),
+    "Lattice_Properties": PropertiesCommand(),
+    "Lattice_DensityTarget": DensityTargetCommand(),
     "Lattice_Export": ExportCommand(),
 }
 
 for _name, _command in COMMANDS.items():
     FreeCADGui.addCommand(_name, _command)
 
-TOOLBAR = ["Lattice_NewLattice", "Lattice_Filter", "Lattice_Part", "Separator", "Lattice_Export"]
+TOOLBAR = ["Lattice_NewLattice", "Lattice_Filter", "Lattice_Part", "Separator", "Lattice_Properties",
+           "Lattice_DensityTarget", "Separator", "Lattice_Export"]
 MENU = TOOLBAR
