@@ -28,5 +28,5 @@ class ExamplesTest(unittest.TestCase):
                     for name in set(FreeCAD.listDocuments()) - before:
                         FreeCAD.closeDocument(name)
                 self.assertTrue(os.path.isfile(result), result)
-                self.assertGreater(os.path.getsize(result), 1000)
+                self.assertGreater(os.path.getsize(result), 200)  # more than a header: real content
                 self.assertTrue(result.startswith(out))

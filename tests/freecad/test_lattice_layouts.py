@@ -111,10 +111,28 @@ class LayoutTest(unittest.TestCase):
         self.assertEqual(len(small.Shape.Solids), 0)
         path = api.export([small], os.path.join(tempfile.mkdtemp(), "small.step"))
         self.assertEqual(len(Part.read(path).Solids), small.BallCount + small.BeamCount)
-        small.Representation = "Solids"
+        small.Representation = "Elements"
         self.doc.recompute()
         self.assertEqual(len(small.Shape.Solids), small.BallCount + small.BeamCount)
 
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class SolidRepresentationTest(unittest.TestCase):
+    def test_solid_is_one_exact_brep(self):
+        doc = FreeCAD.newDocument("SolidTest")
+        try:
+            obj = api.make_lattice(doc, preset="octet", cells=(2, 2, 2), cell_size=8.0, node_radius=1.3,
+                                   beam_radius=0.55, twist_w=5.0, representation="Solid")
+            obj.Placement.Base = FreeCAD.Vector(100, 0, 0)
+            doc.recompute()
+            self.assertTrue(obj.isValid())
+            self.assertEqual(len(obj.Shape.Solids), 1)
+            self.assertTrue(obj.Shape.isValid())
+            # the closed-form volume of the same lattice, computed independently of the B-rep
+            self.assertAlmostEqual(obj.Shape.Volume, api.properties(obj)["volume"], delta=1e-6 * obj.Shape.Volume)
+            self.assertGreater(obj.Shape.BoundBox.XMin, 90.0)  # placed by the object's Placement
+        finally:
+            FreeCAD.closeDocument(doc.Name)

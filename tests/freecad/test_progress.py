@@ -34,7 +34,7 @@ class ProgressTest(unittest.TestCase):
         obj = api.make_lattice(self.doc, preset="octet", cells=(6, 6, 6), representation="Preview")
         self.doc.recompute()
         volume = other.Shape.Volume
-        obj.Representation = "Solids"
+        obj.Representation = "Elements"
         original = LongOperation.__call__
         LongOperation.__call__ = lambda self, f: (self.cancel() if f > 0.2 else None) or original(self, f)
         try:

@@ -41,7 +41,7 @@ class PreviewGuiTest(unittest.TestCase):
 
     def test_bent_lattice_screenshot(self):
         api.make_lattice(self.doc, preset="octet", cells=(10, 3, 3), cell_size=6.0, node_radius=0.9,
-                         beam_radius=0.55, bend_u=6.0, bend_u_toward="V", taper_u=-2.0, representation="Solids")
+                         beam_radius=0.55, bend_u=6.0, bend_u_toward="V", taper_u=-2.0, representation="Elements")
         self.doc.recompute()
         FreeCADGui.Selection.clearSelection()
         FreeCADGui.activeDocument().activeView().viewTop()

@@ -34,7 +34,7 @@ def make_lattice(doc, preset=None, **params):
     preset: "cubic", "BCC", "FCC", "octet", "diamond", "Kelvin", "honeycomb" or "custom" (default octet).
     params (all optional): cells=(u, v, w), cell_size, node_radius, beam_radius (0: beams are the hulls of
     their balls), layout ("grading", "steps" or "frames"), placement, representation ("Auto", "Preview",
-    "Solids"), preview_budget;
+    "Elements", "Solid"), preview_budget;
       grading: taper_u / _v / _w (% per cell), twist_u / _v / _w and bend_u / _v / _w (degrees per cell),
                bend_u_toward / bend_v_toward / bend_w_toward ("U", "V" or "W");
       steps:   step_mode ("incremental" or "cumulative"), step_u / _v / _w (FreeCAD.Placement, translation in

@@ -63,3 +63,10 @@ def empty_shape():
     """The Shape of a lattice shown as a preview: nothing for FreeCAD to tessellate (the view provider draws the
     beam axes itself; exports build the solids on demand)."""
     return Part.Compound([])
+
+
+def exact_solid(lattice):
+    """The lattice as one exact B-rep solid (the union of its balls and beams), built by the kernel."""
+    shape = Part.Shape()
+    shape.importBrepFromString(lattice.brep())
+    return shape

@@ -6,7 +6,7 @@ Its parameters sit in the property editor, grouped:
   Steps     (layout "steps") the step between neighbouring cells as a placement plus a scale (or cumulative)
   Frames    (layout "frames") where the last cell along U, V and W goes, as placements plus scales
   Template  custom nodes, radii and beam patterns
-  Display   Representation (Auto, Preview, Solids) and the preview budget
+  Display   Representation (Auto, Preview, Elements, Solid) and the preview budget
 The object's own Placement places the whole lattice (the papers' base frame G).
 """
 import FreeCAD
@@ -18,7 +18,7 @@ CUSTOM = "custom"
 LAYOUTS = ["grading", "steps", "frames"]
 ORDERS = ["Auto", "UVW", "UWV", "VUW", "VWU", "WUV", "WVU"]
 STEP_MODES = ["incremental", "cumulative"]
-REPRESENTATIONS = ["Auto", "Preview", "Solids"]
+REPRESENTATIONS = ["Auto", "Preview", "Elements", "Solid"]
 
 # (type, name, group, tooltip)
 _PROPERTIES = [
@@ -74,8 +74,9 @@ _PROPERTIES = [
      "Custom template: beam patterns 'n1 di dj dk n2' joining node n1 of cell (i,j,k) to node n2 of cell "
      "(i+di, j+dj, k+dk); append 'r1 r2' (mm) for beams thinner than their nodes"),
     ("App::PropertyEnumeration", "Representation", "Display",
-     "Preview: beam axes and node points (fast at 10^6 beams); Solids: balls and beams as solids; "
-     "Auto: Solids up to %d elements, Preview beyond" % lattice_shape.MAX_SOLID_ELEMENTS),
+     "Preview: beam axes (fast at 10^6 beams); Elements: balls and beams as separate solids; Solid: the lattice as "
+     "one exact B-rep solid (their union); Auto: Elements up to %d elements, Preview beyond"
+     % lattice_shape.MAX_SOLID_ELEMENTS),
     ("App::PropertyIntegerConstraint", "PreviewBudget", "Display",
      "Most beams the preview draws; beyond it an evenly spread subset is drawn"),
     ("App::PropertyString", "AppliedOrder", "Result",
@@ -166,7 +167,9 @@ class SteadyLattice:
         obj.AppliedOrder = "".join("UVW"[a] for a in applied_order(obj))
         obj.BallCount = lattice.ball_count
         obj.BeamCount = lattice.beam_count
-        if shows_solids(obj):
+        if obj.Representation == "Solid":
+            obj.Shape = lattice_shape.exact_solid(lattice)
+        elif shows_solids(obj):
             import steadylattice
             from latticewb.progress import LongOperation
             try:
@@ -201,7 +204,8 @@ class SteadyLattice:
 
 
 def shows_solids(obj):
-    if obj.Representation == "Solids":
+    """Whether the lattice is shown as separate element solids (Elements, or Auto for small lattices)."""
+    if obj.Representation == "Elements":
         return True
     return obj.Representation == "Auto" and obj.BallCount + obj.BeamCount <= lattice_shape.MAX_SOLID_ELEMENTS
 
