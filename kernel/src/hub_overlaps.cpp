@@ -9,7 +9,7 @@
 #include <sstream>
 #include <unordered_map>
 
-#include "convex_distance.hpp"
+#include "steady/convex_distance.hpp"
 #include "steady/hub.hpp"
 #include "steady/memory_budget.hpp"
 
@@ -90,11 +90,11 @@ bool pieces_overlap(const Piece& p, const Piece& q) {
   if (p.stump && q.stump && p.beam == q.beam && p.at_start != q.at_start) return false;  // share their cut disk
   if (glm::length(p.bound_center - q.bound_center) >= p.bound_radius + q.bound_radius) return false;
   const double size = std::max(p.bound_radius, q.bound_radius);
-  const double shrink = kShrink * size;
-  const double d = detail::convex_distance([&](const Vec3& v) { return support(p, shrink, v); },
-                                           [&](const Vec3& v) { return support(q, shrink, v); }, p.bound_center,
-                                           q.bound_center, kDistanceTolerance * size);
-  return d == 0.0;
+  const double shrink = kShrink * size, tolerance = kDistanceTolerance * size;
+  // GJK (the B-rep clean check's): stops as soon as the shrunk pieces are proven apart or in contact.
+  const DistanceBounds d = convex_distance([&](const Vec3& v) { return support(p, shrink, v); },
+                                           [&](const Vec3& v) { return support(q, shrink, v); }, tolerance, tolerance);
+  return d.intersecting || d.upper <= tolerance;
 }
 
 std::string piece_name(const Piece& p) {
