@@ -14,6 +14,7 @@
 #include <tbb/parallel_for.h>
 
 #include <chrono>
+#include "steady/brep_io.hpp"
 #include <cmath>
 #include <numeric>
 #include <optional>
@@ -367,6 +368,11 @@ TrimResult trim_lattice(const FlatLattice& f, const TopoDS_Shape& body_shape, co
     for (const auto& [beam, present] : split_present)
       if (present == 1)
         throw std::runtime_error("trim: only one side of the cut of beam " + std::to_string(beam) + " survived");
+    // OpenCASCADE's Booleans report success on some results they got wrong; check what they produced (only the
+    // boundary hubs' part: the rest was built exactly) rather than pass an invalid solid on.
+    if (options.verify_booleans && !is_valid(merged))
+      throw std::runtime_error("trim: OpenCASCADE's Boolean on the boundary hubs produced an invalid shape (" +
+                               validity_report(merged, 2) + ")");
     for (TopExp_Explorer x(merged, TopAbs_FACE); x.More(); x.Next())
       if (!removed_index.count(x.Current().TShape().get()))
         faces.push_back(TopoDS::Face(pores ? x.Current().Reversed() : x.Current()));
