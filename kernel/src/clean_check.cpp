@@ -249,7 +249,8 @@ CleanReport check_clean(const FlatLattice& f, const CleanCheckOptions& options) 
   CleanReport report;
   const Elements el = prepare(f, report);
   tbb::enumerable_thread_specific<std::vector<CleanIssue>> found;
-  tbb::parallel_for(std::int64_t(0), f.ball_count(), [&](std::int64_t i) { check_caps(f, el, i, found.local()); });
+  if (!options.skip_circle_overlaps)
+    tbb::parallel_for(std::int64_t(0), f.ball_count(), [&](std::int64_t i) { check_caps(f, el, i, found.local()); });
   const auto pairs = overlapping_box_pairs(element_boxes(f, el));
   report.candidate_pairs = static_cast<std::int64_t>(pairs.size());
   tbb::parallel_for(std::size_t(0), pairs.size(), [&](std::size_t p) {

@@ -19,8 +19,8 @@ Vec3 any_perpendicular(const Vec3& d) {
   return glm::normalize(glm::cross(d, a));
 }
 
-std::uint64_t hash_caps(const std::vector<SphereCap>& caps) {
-  std::uint64_t h = 1469598103934665603ull ^ caps.size();
+std::uint64_t hash_caps(const std::vector<SphereCap>& caps, int kind, const std::vector<double>& extras) {
+  std::uint64_t h = 1469598103934665603ull ^ (caps.size() * 4 + static_cast<std::uint64_t>(kind));
   auto mix = [&](double v) {
     const std::int64_t q = std::llround(v / kHashGrid);
     h ^= static_cast<std::uint64_t>(q) + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
@@ -31,6 +31,7 @@ std::uint64_t hash_caps(const std::vector<SphereCap>& caps) {
     mix(c.direction.z);
     mix(c.exit);
   }
+  for (double x : extras) mix(x);
   return h;
 }
 
@@ -40,6 +41,13 @@ bool same_caps(const std::vector<SphereCap>& a, const std::vector<SphereCap>& b)
     if (glm::length(a[i].direction - b[i].direction) > kHubMatchTolerance) return false;
     if (std::abs(a[i].exit - b[i].exit) > kHubMatchTolerance) return false;
   }
+  return true;
+}
+
+bool same_extras(const HubGeometry& a, const HubGeometry& b) {
+  if (a.kind != b.kind || a.extras.size() != b.extras.size()) return false;
+  for (std::size_t i = 0; i < a.extras.size(); ++i)
+    if (std::abs(a.extras[i] - b.extras[i]) > kHubMatchTolerance) return false;
   return true;
 }
 
@@ -81,14 +89,14 @@ HubCatalog catalog_hubs(const std::vector<HubGeometry>& hubs) {
   tbb::parallel_for(std::int64_t(0), n, [&](std::int64_t h) {
     cat.placements[h] = canonical_frame(hubs[h]);
     caps[h] = canonical_caps(hubs[h], cat.placements[h].rotation);
-    keys[h] = hash_caps(caps[h]);
+    keys[h] = hash_caps(caps[h], hubs[h].kind, hubs[h].extras);
   });
   std::unordered_map<std::uint64_t, std::vector<int>> by_key;
   for (std::int64_t h = 0; h < n; ++h) {
     auto& candidates = by_key[keys[h]];
     int shape = -1;
     for (int s : candidates)
-      if (same_caps(cat.shapes[s], caps[h])) {
+      if (same_caps(cat.shapes[s], caps[h]) && same_extras(hubs[cat.representatives[s]], hubs[h])) {
         shape = s;
         break;
       }

@@ -1,7 +1,9 @@
 #include "steady/skin.hpp"
 
 #include <BRepOffsetAPI_MakeOffsetShape.hxx>
+#include <BRepLib.hxx>
 #include <BRep_Builder.hxx>
+#include <ShapeFix_ShapeTolerance.hxx>
 #include <BRep_Tool.hxx>
 #include <Standard_Failure.hxx>
 #include <TopExp.hxx>
@@ -61,6 +63,12 @@ Skin make_skin(const SolidBody& body, double thickness) {
   const BRep_Builder b;
   b.MakeSolid(out.inner);
   b.Add(out.inner, inner_shell);
+  // BRepOffset leaves its working tolerance (1e-3) on every edge and vertex, though the offset of analytic faces
+  // is exact: such tolerances make the Booleans on the boundary hubs see contacts that are not there. Bring them
+  // down to the curves' actual deviation (at least the confusion tolerance).
+  ShapeFix_ShapeTolerance().LimitTolerance(out.inner, kOffsetTolerance, kOffsetTolerance);
+  BRepLib::SameParameter(out.inner, kOffsetTolerance, Standard_True);
+  BRepLib::UpdateTolerances(out.inner, Standard_False);
   if (!is_valid(out.inner)) too_thick(thickness, "the inward offset is not a valid solid");
   const double inner_volume = shape_volume(out.inner);
   if (!(inner_volume > 0.0) || !(inner_volume < body.volume())) too_thick(thickness, "the inward offset is empty or inverted");

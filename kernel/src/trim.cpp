@@ -14,6 +14,7 @@
 #include <tbb/parallel_for.h>
 
 #include <chrono>
+#include "steady/brep_io.hpp"
 #include <cmath>
 #include <numeric>
 #include <optional>
@@ -54,48 +55,67 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-// Radius of the ball around a node center that holds its hub: the node ball and each half-beam up to the cut.
-std::vector<double> hub_bounding_radii(const FlatLattice& f, const std::vector<BeamFrustum>& frustums) {
-  std::vector<double> r(f.ball_count());
+// The pieces of a hub, each in a bounding ball: the node ball, and each half-beam from its exit circle to its cut.
+// A hub is clear of a boundary when all its pieces are; and since the segment joining two nodes runs through their
+// pieces (ball, half-beam, half-beam, ball), hubs clear of the boundary and joined by a beam lie on the same side.
+struct Piece {
+  Vec3 center{0.0};
+  double radius = 0.0;
+};
+
+std::vector<std::vector<Piece>> hub_pieces(const FlatLattice& f, const std::vector<BeamFrustum>& frustums) {
+  std::vector<std::vector<Piece>> out(f.ball_count());
   tbb::parallel_for(std::int64_t(0), f.ball_count(), [&](std::int64_t i) {
-    double rb = f.balls[i].radius;
+    const Ball& ball = f.balls[i];
+    out[i].push_back({ball.center, ball.radius});
     for (const std::int64_t* e = f.incident_begin(i); e != f.incident_end(i); ++e) {
       const BeamFrustum& fr = frustums[*e];
       if (!fr.exists) continue;
-      const double x = f.beams[*e].a == i ? fr.cut_position() : fr.cone.length - fr.cut_position();
-      const double rc = fr.cone.radius_at(fr.cut_position());
-      rb = std::max(rb, std::hypot(x, rc));
+      const bool at_a = f.beams[*e].a == i;
+      const double x_exit = at_a ? fr.exit_a : fr.exit_b;
+      const double x_cut = at_a ? fr.cut_position() : fr.cone.length - fr.cut_position();
+      const double r_exit = at_a ? fr.circle_a.radius : fr.circle_b.radius;
+      const double r_cut = fr.cone.radius_at(fr.cut_position());
+      const Vec3 dir = at_a ? fr.cone.axis : -fr.cone.axis;
+      out[i].push_back({ball.center + 0.5 * (x_exit + x_cut) * dir,
+                        std::hypot(0.5 * (x_cut - x_exit), std::max(r_exit, r_cut))});
     }
-    r[i] = rb;
   });
-  return r;
+  return out;
 }
 
 // Inside / outside / crossing of every (non-absorbed) hub against a body's boundary.
 std::vector<HubState> classify_hubs(const FlatLattice& f, const std::vector<char>& absorbed,
-                                    const std::vector<double>& radius, const SolidBody& body, TrimStats& stats) {
+                                    const std::vector<std::vector<Piece>>& pieces, const SolidBody& body,
+                                    TrimStats& stats) {
   const std::int64_t n = f.ball_count();
   std::vector<HubState> state(n, HubState::Absent);
-  std::vector<double> lower(n, 0.0);
-  tbb::parallel_for(std::int64_t(0), n, [&](std::int64_t i) {
-    if (!absorbed[i]) lower[i] = body.distance_lower_bound(f.balls[i].center);
-  });
   const double clearance = kClearanceRelative * body.size();
+  // The triangulation's lower bound clears most pieces; the rest need the exact distance (serial).
   std::vector<char> clear(n, 0);
+  std::vector<std::vector<char>> undecided(n);
+  tbb::parallel_for(std::int64_t(0), n, [&](std::int64_t i) {
+    if (absorbed[i]) return;
+    bool all = true;
+    undecided[i].assign(pieces[i].size(), 0);
+    for (std::size_t k = 0; k < pieces[i].size(); ++k)
+      if (!(body.distance_lower_bound(pieces[i][k].center) > pieces[i][k].radius + clearance)) {
+        undecided[i][k] = 1;
+        all = false;
+      }
+    clear[i] = all;
+  });
   for (std::int64_t i = 0; i < n; ++i) {
-    if (absorbed[i]) continue;
-    if (lower[i] > radius[i] + clearance) {
-      clear[i] = 1;
-      continue;
+    if (absorbed[i] || clear[i]) continue;
+    bool all = true;
+    for (std::size_t k = 0; k < pieces[i].size() && all; ++k) {
+      if (!undecided[i][k]) continue;
+      ++stats.exact_distance_tests;
+      all = body.exact_distance(pieces[i][k].center) > pieces[i][k].radius + clearance;
     }
-    ++stats.exact_distance_tests;
-    if (body.exact_distance(f.balls[i].center) > radius[i] + clearance)
-      clear[i] = 1;
-    else
-      state[i] = HubState::Crossing;
+    clear[i] = all;
+    if (!all) state[i] = HubState::Crossing;
   }
-  // Hubs clear of the boundary and joined by a beam are on the same side: the segment between their centers lies
-  // in the union of their bounding balls. One exact classification per connected region.
   std::vector<std::int64_t> parent(n);
   std::iota(parent.begin(), parent.end(), 0);
   auto find = [&](std::int64_t x) {
@@ -167,10 +187,10 @@ TrimResult trim_lattice(const FlatLattice& f, const TopoDS_Shape& body_shape, co
   }
   const std::vector<BeamFrustum> frustums = beam_frustums(f);
   const std::vector<char> absorbed = absorbed_balls(f, frustums);
-  const std::vector<double> radius = hub_bounding_radii(f, frustums);
-  const std::vector<HubState> outer_state = classify_hubs(f, absorbed, radius, body, stats);
+  const std::vector<std::vector<Piece>> pieces = hub_pieces(f, frustums);
+  const std::vector<HubState> outer_state = classify_hubs(f, absorbed, pieces, body, stats);
   std::vector<HubState> inner_state = outer_state;
-  if (inner) inner_state = classify_hubs(f, absorbed, radius, *inner, stats);
+  if (inner) inner_state = classify_hubs(f, absorbed, pieces, *inner, stats);
   stats.classify_seconds = seconds_since(clock);
 
   // Roles: interior hubs are built whole with no Boolean; band hubs go through the Booleans.
@@ -226,10 +246,11 @@ TrimResult trim_lattice(const FlatLattice& f, const TopoDS_Shape& body_shape, co
   // Band hubs are clipped in independent clusters, in parallel: a beam between two band hubs is split at its cut
   // (each side closed by its own disk) when that disk is clear of every boundary the Booleans use, so each side
   // comes out of its Boolean untouched or wholly deleted and the two sides can be glued again.
-  // With a skin to unite, the band meets the inner body in one Boolean (see below) and is not split.
+  // Clip: the clusters meet the body, or with a skin its inner offset. Whole with a skin: the band is fused with the
+  // skin in one Boolean (see below) and is not split.
   const bool unite = skin && options.unite_skin;
   std::vector<const SolidBody*> boundaries;
-  if (options.policy == TrimPolicy::Clip && !unite) boundaries.push_back(inner ? &*inner : &body);
+  if (options.policy == TrimPolicy::Clip) boundaries.push_back(inner ? &*inner : &body);
   const bool clusters_wanted = !boundaries.empty();
   const double clearance = kClearanceRelative * body.size();
   std::vector<char> split(f.beam_count(), 0);
@@ -300,6 +321,7 @@ TrimResult trim_lattice(const FlatLattice& f, const TopoDS_Shape& body_shape, co
       const CutCap* cap;
       int cluster;
       Fate fate = Fate::Present;
+      int changed_by = -2;  // the cluster whose Boolean changed its fate, or -1 for the final one
     };
     std::vector<Removed> removed;
     std::unordered_map<const void*, std::size_t> removed_index;
@@ -320,18 +342,20 @@ TrimResult trim_lattice(const FlatLattice& f, const TopoDS_Shape& body_shape, co
           r.fate = Fate::Deleted;
         else if (!op.Modified(r.cap->face).IsEmpty())
           r.fate = Fate::Modified;
+        if (r.fate != Fate::Present) r.changed_by = cluster;
       }
     };
     const TopoDS_Shape* tool = nullptr;
     const char* what = "";
-    if (options.policy == TrimPolicy::Clip && !unite) {
+    if (options.policy == TrimPolicy::Clip) {
       tool = skin ? &skin->inner : &body.solid();
       what = skin ? "Common with the inner body" : "Common with the body";
     }
-    std::vector<TopoDS_Shape> results(cluster_faces.size());
+    std::vector<TopoDS_Shape> results(cluster_faces.size()), unclipped(cluster_faces.size());
     tbb::enumerable_thread_specific<TopoDS_Shape> tool_copies;
     tbb::parallel_for(std::size_t(0), cluster_faces.size(), [&](std::size_t c) {
       const TopoDS_Shape solid = solids_from_faces(cluster_faces[c]);
+      unclipped[c] = solid;
       if (!tool) {
         results[c] = solid;
         return;
@@ -343,33 +367,70 @@ TrimResult trim_lattice(const FlatLattice& f, const TopoDS_Shape& body_shape, co
       results[c] = run_boolean(op, solid, copy, what);
       track(op, static_cast<int>(c));
     });
-    TopoDS_Shape merged = compound_of(results);
-    bool pores = false;
-    if (unite) {
-      // skin U (band n body) = body \ (inner \ band): the band only meets the inner boundary, never the outer
-      // one (what it has outside the body falls away by itself), and no two faces of the Boolean coincide. The
-      // part is the body with the pores, inner \ band, as voids.
+    // Checks one attempt: every interface disk untouched, the two disks of a split beam with one fate, the
+    // Boolean's faces valid (OpenCASCADE reports success on some results it got wrong: check what it produced,
+    // only that; the rest was built exactly and the solids are assembled again below). Returns the faces to keep,
+    // or an error message.
+    auto collect = [&](const TopoDS_Shape& merged, bool pores, std::vector<TopoDS_Face>& kept) -> std::string {
+      std::unordered_map<std::int64_t, int> split_present;
+      for (const Removed& r : removed) {
+        if (r.fate == Fate::Modified || (open_cuts[r.cap->beam] && r.fate != Fate::Present))
+          return "the disk closing beam " + std::to_string(r.cap->beam) + " at its cut (toward " +
+                 (split[r.cap->beam] ? "another boundary hub" : "an interior hub") + ") was " +
+                 (r.fate == Fate::Deleted ? "deleted" : "modified") + " by " +
+                 (r.changed_by >= 0 ? "the Boolean of boundary cluster " + std::to_string(r.changed_by) + " (of " +
+                                          std::to_string(cluster_faces.size()) + ")"
+                                    : std::string("the final Boolean")) +
+                 ", though it lies clear of the boundary: OpenCASCADE misclassified it";
+        if (split[r.cap->beam]) split_present[r.cap->beam] += r.fate == Fate::Present ? 1 : 0;
+      }
+      for (const auto& [beam, present] : split_present)
+        if (present == 1) return "only one side of the cut of beam " + std::to_string(beam) + " survived";
+      for (TopExp_Explorer x(merged, TopAbs_FACE); x.More(); x.Next())
+        if (!removed_index.count(x.Current().TShape().get()))
+          kept.push_back(TopoDS::Face(pores ? x.Current().Reversed() : x.Current()));
+      if (options.verify_booleans) {
+        const TopoDS_Shape produced = compound_of(std::vector<TopoDS_Shape>(kept.begin(), kept.end()));
+        if (!is_valid(produced)) return "its Boolean produced invalid faces (" + validity_report(produced, 2) + ")";
+      }
+      return "";
+    };
+    // The union with the skin through the pores: body \ (inner \ band). The band only meets the inner boundary
+    // (what it has outside the body falls away by itself), and no two faces of the Boolean coincide; the part is
+    // the body with the pores as voids.
+    auto through_pores = [&](std::vector<TopoDS_Face>& kept) {
+      for (Removed& r : removed) r.fate = Fate::Present, r.changed_by = -2;
       BRepAlgoAPI_Cut op;
-      merged = run_boolean(op, skin->inner, merged, "Cut of the inner body by the boundary hubs");
+      const TopoDS_Shape pores = run_boolean(op, skin->inner, compound_of(unclipped), "Cut of the inner body by the boundary hubs");
       track(op, -1);
-      pores = true;
-      for (TopExp_Explorer x(body.solid(), TopAbs_FACE); x.More(); x.Next()) faces.push_back(TopoDS::Face(x.Current()));
+      for (TopExp_Explorer x(body.solid(), TopAbs_FACE); x.More(); x.Next()) kept.push_back(TopoDS::Face(x.Current()));
+      return collect(pores, true, kept);
+    };
+    std::vector<TopoDS_Face> kept;
+    std::string error;
+    if (unite && options.policy == TrimPolicy::Clip) {
+      // skin U (lattice n inner): the clipped clusters touch the skin only along pieces of the inner boundary,
+      // faces that coincide with the skin's and that nothing crosses: a glued Fuse, with no surface-surface
+      // intersection at all (each cluster met the inner body in its own local Common above). Should OpenCASCADE
+      // get it wrong, the union is done again through the pores.
+      BRepAlgoAPI_Fuse op;
+      op.SetGlue(BOPAlgo_GlueShift);
+      const TopoDS_Shape merged = run_boolean(op, skin->skin, compound_of(results), "glued Fuse with the skin");
+      track(op, -1);
+      error = collect(merged, false, kept);
+      if (!error.empty()) {
+        kept.clear();
+        const std::string retry = through_pores(kept);
+        error = retry.empty() ? "" : error + "; and through the pores: " + retry;
+      }
+    } else if (unite) {
+      // Whole: hubs are never cut, so they cross the inner boundary: through the pores.
+      error = through_pores(kept);
+    } else {
+      error = collect(compound_of(results), false, kept);
     }
-    // Every interface disk must come out untouched; the two disks of a split beam must share their fate.
-    std::unordered_map<std::int64_t, int> split_present;
-    for (const Removed& r : removed) {
-      if (r.fate == Fate::Modified || (open_cuts[r.cap->beam] && r.fate != Fate::Present))
-        throw std::runtime_error("trim: the disk closing beam " + std::to_string(r.cap->beam) + " (" +
-                                 (split[r.cap->beam] ? "split" : "interface") + ", fate " + std::to_string(int(r.fate)) +
-                                 ") at its cut was modified by a Boolean; the pieces cannot be glued");
-      if (split[r.cap->beam]) split_present[r.cap->beam] += r.fate == Fate::Present ? 1 : 0;
-    }
-    for (const auto& [beam, present] : split_present)
-      if (present == 1)
-        throw std::runtime_error("trim: only one side of the cut of beam " + std::to_string(beam) + " survived");
-    for (TopExp_Explorer x(merged, TopAbs_FACE); x.More(); x.Next())
-      if (!removed_index.count(x.Current().TShape().get()))
-        faces.push_back(TopoDS::Face(pores ? x.Current().Reversed() : x.Current()));
+    if (!error.empty()) throw std::runtime_error("trim: " + error + "; the pieces cannot be glued");
+    faces.insert(faces.end(), kept.begin(), kept.end());
   } else if (skin && options.unite_skin) {
     for (TopExp_Explorer x(skin->skin, TopAbs_FACE); x.More(); x.Next()) faces.push_back(TopoDS::Face(x.Current()));
   }

@@ -157,3 +157,18 @@ def test_lattice_missing_the_body_and_unclean_lattices_are_refused():
         far.brep(body=body("box.brep"))
     with pytest.raises(ValueError, match="lattice: is not clean"):
         strut_lattice(3, node_radius=0.55).brep()
+
+
+def test_hull_model_lattice_is_one_valid_solid():
+    """Without beam radii every beam is tangent to its balls (the papers' hull model): the hubs are built from
+    cores (cones meeting in plane conics, no Boolean), placed as similar copies."""
+    t = sl.Similarity.translation
+    lat = sl.Lattice([((0, 0, 0), 0.25)], [(0, 1, 0, 0, 0), (0, 0, 1, 0, 0), (0, 0, 0, 1, 0)], (3, 3, 3), t((1, 0, 0)),
+                     t((0, 1, 0)), t((0, 0, 1)))
+    assert not lat.clean_check()["clean"]
+    props = sl.brep_properties(lat.brep())
+    assert props["valid"], props["report"]
+    assert props["solids"] == 1
+    # More than the balls, less than the balls plus full-length cylinders between them.
+    balls = 27 * 4 / 3 * math.pi * 0.25 ** 3
+    assert balls < props["volume"] < balls + lat.beam_count * math.pi * 0.25 ** 2 * 1.0

@@ -11,7 +11,9 @@
 // Pieces of a lattice can be built separately and glued: a beam whose ball is not built ends at its cut (halfway
 // between its exit planes), either closed by a planar disk or left open on a circle edge shared through CutEdges
 // with the piece on the other side. Trimming uses this to run Booleans on boundary hubs only.
+#include <Geom_Circle.hxx>
 #include <TopoDS_Edge.hxx>
+#include <TopoDS_Vertex.hxx>
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Shape.hxx>
 
@@ -35,6 +37,9 @@ struct BrepBuildStats {
   std::int64_t distinct_hubs = 0;  // distinct hub shapes (each laid out once)
   std::int64_t cut_caps = 0;       // planar disks closing cuts
   std::int64_t seam_crossing_circles = 0;  // circles of distinct hub shapes crossed by their sphere's seam
+  std::int64_t core_hubs = 0;      // hubs whose exit circles overlap, built from a core (hub_core.hpp)
+  std::int64_t distinct_cores = 0;
+  std::int64_t joints = 0;         // circles added inside beams to join two fixed seams
   double layout_seconds = 0.0;     // catalog, sphere layouts and (u, v) curves
   double topology_seconds = 0.0;   // vertices, edges, faces
 };
@@ -50,8 +55,15 @@ struct BrepSelection {
   static BrepSelection everything(const FlatLattice& lattice);
 };
 
-// The circle edge of each cut beam, shared by the pieces built on either side of the cut.
-using CutEdges = std::unordered_map<std::int64_t, TopoDS_Edge>;
+// The circle at a beam's cut, shared by the pieces built on either side of it: its edges run between its vertices
+// (one or two: where the seams of the two sides' conical faces meet it).
+struct CutCircle {
+  Handle(Geom_Circle) curve;            // normal along the beam (from its ball a to its ball b)
+  std::vector<double> params;           // vertex parameters, sorted, within [params[0], params[0] + 2 pi)
+  std::vector<TopoDS_Vertex> vertices;  // one per parameter
+  std::vector<TopoDS_Edge> edges;       // edges[k] from params[k] to params[k + 1] (the last one wraps)
+};
+using CutEdges = std::unordered_map<std::int64_t, CutCircle>;
 
 // A disk closing a beam's cut: side 0 closes the piece on the beam's `a` side, side 1 the `b` side.
 struct CutCap {
@@ -79,7 +91,8 @@ struct LatticeBrep {
   BrepBuildStats stats;
 };
 
-// The whole lattice. Throws InvalidInput (naming the first offending elements) when it is not clean.
+// The whole lattice. Hubs whose exit circles overlap (the hull model, crowded hubs) are built from cores; any
+// other issue of the clean check (elements meeting foreign ones) throws InvalidInput naming the first offenders.
 LatticeBrep build_lattice_brep(const FlatLattice& lattice, SeamPreference seams = SeamPreference::FewestCrossings);
 LatticeBrep build_lattice_brep(const Lattice& lattice);
 

@@ -58,6 +58,8 @@ struct CleanReport {
 
 struct CleanCheckOptions {
   std::int64_t max_reported = 10000;  // issues kept in the report (all are counted)
+  // Leave out overlapping exit circles (rule 1): the B-rep builder builds such hubs from cores (hub_core.hpp).
+  bool skip_circle_overlaps = false;
 };
 
 CleanReport check_clean(const FlatLattice& lattice, const CleanCheckOptions& options = {});

@@ -23,6 +23,8 @@ constexpr double kHubMatchTolerance = 1e-10;
 struct HubGeometry {
   Ball ball;
   std::vector<Circle> exits;
+  int kind = 0;                // hubs of different kinds are never the same shape
+  std::vector<double> extras;  // further similarity-invariant numbers the shape depends on (compared too)
 };
 
 // world point = ball.center + ball.radius * rotation * canonical point.
@@ -33,7 +35,8 @@ struct HubPlacement {
 
 struct HubCatalog {
   std::vector<HubPlacement> placements;          // one per hub
-  std::vector<std::vector<SphereCap>> shapes;    // canonical caps of each distinct shape
+  std::vector<std::vector<SphereCap>> shapes;    // canonical caps of each distinct shape (its kind and extras
+                                                 // are those of its representative)
   std::vector<std::int64_t> representatives;     // the hub whose canonical caps define each shape
 };
 

@@ -33,6 +33,7 @@ struct TrimOptions {
   DanglingBeams dangling = DanglingBeams::Keep;
   double skin = 0.0;          // wall thickness; 0: no skin
   bool unite_skin = true;     // false: return the skin and the trimmed lattice as separate shapes
+  bool verify_booleans = true;  // check the Booleans' output with BRepCheck (an error instead of a bad solid)
 };
 
 struct TrimStats {

@@ -1,0 +1,228 @@
+// Hub cores (crowded hubs and the hull model): each core closed by disks at its collars must be a valid solid
+// whose volume (BRepGProp) matches an independent quadrature of the hub's radial function; lattices built from
+// cores must be valid solids whose volume is the cores' quadrature plus the beams' frustums between collars.
+#include <gtest/gtest.h>
+
+#include <BRepPrimAPI_MakeSphere.hxx>
+#include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
+#include <Geom2d_Circle.hxx>
+#include <Geom_Circle.hxx>
+#include <Geom_Plane.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Shell.hxx>
+#include <TopoDS_Solid.hxx>
+#include <TopoDS_Wire.hxx>
+
+#include <random>
+
+#include "steady/beam_frustum.hpp"
+#include "steady/brep_builder.hpp"
+#include "steady/brep_io.hpp"
+#include "steady/errors.hpp"
+#include "steady/flat_lattice.hpp"
+#include "steady/hub_core.hpp"
+#include "steady/trim.hpp"
+#include "test_support.hpp"
+
+namespace steady {
+namespace {
+
+// The core closed by a disk at every collar.
+TopoDS_Shape closed_core(const HubCore& core) {
+  BRep_Builder b;
+  TopoDS_Shell shell;
+  b.MakeShell(shell);
+  for (TopExp_Explorer x(core.faces, TopAbs_FACE); x.More(); x.Next()) b.Add(shell, x.Current());
+  for (const TopoDS_Edge& collar : core.collars) {
+    Standard_Real first, last;
+    Handle(Geom_Circle) c = Handle(Geom_Circle)::DownCast(BRep_Tool::Curve(collar, first, last));
+    const gp_Ax2& ax = c->Position();
+    TopoDS_Face disk;
+    b.MakeFace(disk, new Geom_Plane(gp_Ax3(ax.Location(), ax.Direction(), ax.XDirection())), 1e-7);
+    b.UpdateEdge(collar, new Geom2d_Circle(gp_Ax2d(gp_Pnt2d(0, 0), gp_Dir2d(1, 0)), c->Radius()), disk, 1e-7);
+    b.Range(collar, first, last);
+    TopoDS_Wire w;
+    b.MakeWire(w);
+    b.Add(w, collar.Oriented(TopAbs_FORWARD));
+    b.Add(disk, w);
+    b.Add(shell, disk);
+  }
+  shell.Closed(true);
+  TopoDS_Solid solid;
+  b.MakeSolid(solid);
+  b.Add(solid, shell);
+  return solid;
+}
+
+CoreStump hull_stump(const Vec3& d, double sin_phi) {
+  CoreStump s;
+  s.direction = glm::normalize(d);
+  s.sin_phi = sin_phi;
+  s.end_radius = 1.0;
+  s.exit = sin_phi;  // the tangent circle
+  return s;
+}
+
+// The quadrature converges fast where faces meet tangentially (the hull model: 1e-6 at 1200) and only to first
+// order across transversal kinks (sphere and thinner stumps: ~1e-4 at 2400).
+void expect_core(const std::vector<CoreStump>& stumps, CoreKind kind, const std::string& what) {
+  const std::vector<double> collars = place_collars(stumps, kind, 50.0);
+  const auto core = build_hub_core(stumps, kind, collars);
+  const TopoDS_Shape solid = closed_core(*core);
+  EXPECT_TRUE(is_valid(solid)) << what << ":\n" << validity_report(solid);
+  const bool hull = kind == CoreKind::Hull;
+  const double expected = core_volume_by_quadrature(stumps, collars, hull ? 1000 : 2000);
+  EXPECT_NEAR(shape_volume(solid) / expected, 1.0, hull ? 2e-5 : 5e-4) << what;
+}
+
+TEST(HubCore, HullModelHubs) {
+  const Vec3 x(1, 0, 0), y(0, 1, 0), z(0, 0, 1);
+  // Corner of a cubic lattice, equal radii: cylinders meeting in ellipses, an octant of the sphere exposed.
+  expect_core({hull_stump(x, 0), hull_stump(y, 0), hull_stump(z, 0)}, CoreKind::Hull, "corner");
+  // Interior node of a cubic lattice: six cylinders, no sphere left.
+  expect_core({hull_stump(x, 0), hull_stump(-x, 0), hull_stump(y, 0), hull_stump(-y, 0), hull_stump(z, 0),
+               hull_stump(-z, 0)},
+              CoreKind::Hull, "cubic");
+  // Graded: cones narrowing or widening away from the node.
+  expect_core({hull_stump(x, 0.2), hull_stump(y, -0.15), hull_stump(z, 0.1), hull_stump(-x - y, 0.05)}, CoreKind::Hull,
+              "graded");
+  // Body-centred: eight diagonals meeting four at a time.
+  std::vector<CoreStump> bcc;
+  for (int i = 0; i < 8; ++i) bcc.push_back(hull_stump(Vec3(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1), 0.1));
+  expect_core(bcc, CoreKind::Hull, "bcc");
+}
+
+TEST(HubCore, RandomHullHubs) {
+  std::mt19937_64 rng(4);
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  int built = 0;
+  for (int trial = 0; trial < 14; ++trial) {
+    // Random directions at least 40 degrees apart (closer stumps would collide far from the hub, and are refused).
+    std::vector<CoreStump> stumps;
+    const int n = 2 + trial % 6;
+    for (int attempt = 0; attempt < 1000 && static_cast<int>(stumps.size()) < n; ++attempt) {
+      const Vec3 d = test::random_unit(rng);
+      const double slope = 0.25 * (2 * u01(rng) - 1);
+      bool apart = true;
+      for (const CoreStump& s : stumps) apart = apart && glm::dot(s.direction, d) < std::cos(40 * M_PI / 180);
+      if (apart) stumps.push_back(hull_stump(d, slope));
+    }
+    try {
+      expect_core(stumps, CoreKind::Hull, "random hull hub " + std::to_string(trial));
+      ++built;
+    } catch (const InvalidInput& e) {
+      // Stumps leaving in nearly the same direction are refused with a reason, never built wrong.
+      EXPECT_NE(std::string(e.what()).find("hub:"), std::string::npos);
+    }
+  }
+  EXPECT_GE(built, 10);
+}
+
+TEST(HubCore, TransversalHubs) {
+  std::mt19937_64 rng(6);
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  int built = 0;
+  for (int trial = 0; trial < 5; ++trial) {
+    std::vector<CoreStump> stumps;
+    const int n = 3 + trial % 4;
+    for (int k = 0; k < n; ++k) {
+      CoreStump s;
+      s.direction = test::random_unit(rng);
+      s.end_radius = 0.4 + 0.3 * u01(rng);
+      s.sin_phi = 0.1 * (2 * u01(rng) - 1);
+      const double c = std::sqrt(1 - s.sin_phi * s.sin_phi);
+      s.exit = s.end_radius * s.sin_phi + c * std::sqrt(1 - s.end_radius * s.end_radius);
+      stumps.push_back(s);
+    }
+    try {
+      expect_core(stumps, CoreKind::Transversal, "transversal hub " + std::to_string(trial));
+      ++built;
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find("hub:"), std::string::npos);
+    }
+  }
+  EXPECT_GE(built, 3);
+}
+
+// A hull-model lattice (no beam radii): every hub is a core; the volume is the cores' quadratures plus the
+// frustums between the collars.
+TEST(HubCore, HullModelLatticeTrimsAndSkins) {
+  // Cores near the body's boundary go through the trimming Booleans like any hub.
+  LatticeDefinition d;
+  d.nodes = {{{0, 0, 0}, 0.22}};
+  d.beams = {{0, 1, 0, 0, 0}, {0, 0, 1, 0, 0}, {0, 0, 0, 1, 0}};
+  d.counts = {5, 5, 5};
+  d.u = {Similarity::translation({1, 0, 0})};
+  d.v = {Similarity::translation({0, 1, 0})};
+  d.w = {Similarity::translation({0, 0, 1})};
+  const FlatLattice f = flatten(Lattice(d));
+  // (A sphere centred on the lattice's middle node passes through its symmetric boundary nodes exactly where four
+  // cylinders touch the ball at one point; OpenCASCADE's Cut then fails: see docs/brep.md.)
+  const TopoDS_Shape body = BRepPrimAPI_MakeSphere(gp_Pnt(2.1, 1.93, 2.04), 2.27).Shape();
+  for (double skin : {0.0, 0.25}) {
+    TrimOptions o;
+    o.skin = skin;
+    const TrimResult r = trim_lattice(f, body, o);
+    EXPECT_TRUE(is_valid(r.part)) << "skin " << skin << ":\n" << validity_report(r.part);
+    EXPECT_EQ(solid_count(r.part), 1) << "skin " << skin;
+    EXPECT_GT(shape_volume(r.part), 0.0);
+  }
+}
+
+TEST(HubCore, HullModelLatticeIsOneValidSolid) {
+  for (int graded = 0; graded < 2; ++graded) {
+    LatticeDefinition d;
+    d.nodes = {{{0, 0, 0}, 0.25}};
+    d.beams = {{0, 1, 0, 0, 0}, {0, 0, 1, 0, 0}, {0, 0, 0, 1, 0}};
+    d.counts = {3, 3, 3};
+    d.u = {graded ? Similarity::swirl(0.05, {0, 0, 1}, {0, 20, 0}, 1.002) : Similarity::translation({1, 0, 0})};
+    d.v = {Similarity::translation({0, 1, 0})};
+    d.w = {Similarity::translation({0, 0, 1})};
+    const FlatLattice f = flatten(Lattice(d));
+    const LatticeBrep b = build_lattice_brep(f);
+    EXPECT_TRUE(is_valid(b.shape)) << validity_report(b.shape);
+    EXPECT_EQ(solid_count(b.shape), 1);
+    EXPECT_EQ(b.stats.core_hubs, f.ball_count());
+    if (!graded) EXPECT_LE(b.stats.distinct_cores, 27);
+    // Expected volume: per hub the core up to its collars (quadrature), per beam the frustum between collars.
+    const std::vector<BeamFrustum> frustums = beam_frustums(f);
+    double expected = 0.0;
+    std::vector<std::vector<double>> collar_of(f.ball_count());
+    std::vector<std::vector<std::int64_t>> beam_of(f.ball_count());
+    for (std::int64_t i = 0; i < f.ball_count(); ++i) {
+      const Ball& ball = f.balls[i];
+      std::vector<CoreStump> stumps;
+      for (const std::int64_t* e = f.incident_begin(i); e != f.incident_end(i); ++e) {
+        const BeamFrustum& fr = frustums[*e];
+        const bool at_a = f.beams[*e].a == i;
+        CoreStump s;
+        s.direction = at_a ? fr.cone.axis : -fr.cone.axis;
+        s.sin_phi = at_a ? fr.cone.sin_phi : -fr.cone.sin_phi;
+        s.end_radius = 1.0;
+        s.exit = s.sin_phi;
+        stumps.push_back(s);
+        beam_of[i].push_back(*e);
+      }
+      const std::vector<double> collars = place_collars(stumps, CoreKind::Hull, 50.0);
+      collar_of[i] = collars;
+      expected += core_volume_by_quadrature(stumps, collars, 800) * std::pow(ball.radius, 3);
+    }
+    for (std::int64_t e = 0; e < f.beam_count(); ++e) {
+      const BeamFrustum& fr = frustums[e];
+      auto collar_at = [&](std::int64_t ball) {
+        const auto& beams = beam_of[ball];
+        const std::size_t k = std::find(beams.begin(), beams.end(), e) - beams.begin();
+        return collar_of[ball][k] * f.balls[ball].radius;
+      };
+      const double x0 = collar_at(f.beams[e].a), x1 = fr.cone.length - collar_at(f.beams[e].b);
+      const double r0 = fr.cone.radius_at(x0), r1 = fr.cone.radius_at(x1);
+      expected += M_PI * (x1 - x0) * (r0 * r0 + r0 * r1 + r1 * r1) / 3.0;
+    }
+    EXPECT_NEAR(shape_volume(b.shape) / expected, 1.0, 2e-5) << (graded ? "graded" : "cubic");
+  }
+}
+
+}  // namespace
+}  // namespace steady
