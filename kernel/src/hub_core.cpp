@@ -39,6 +39,7 @@
 #include <gp_Pln.hxx>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -768,54 +769,123 @@ std::shared_ptr<const HubCore> build_hull_core(const std::vector<CoreStump>& stu
   return out;
 }
 
+// A frame for the ball whose poles and seam keep away from the stumps' axes: OpenCASCADE's Fuse lost an untouched
+// collar disk when a stump ran along the sphere's seam plane (OCC 7.6, crowded octet hub, stump along -X).
+gp_Ax2 generic_sphere_frame(const std::vector<CoreStump>& stumps) {
+  constexpr int kCandidates = 97;
+  Vec3 best_pole(0.0, 0.0, 1.0);
+  double best = -1.0;
+  for (int k = 0; k < kCandidates; ++k) {  // Fibonacci points on the upper half sphere
+    const double z = 1.0 - (k + 0.5) / kCandidates, r = std::sqrt(1.0 - z * z), a = k * 2.399963229728653;
+    const Vec3 pole(r * std::cos(a), r * std::sin(a), z);
+    double nearest = 1.0;  // smallest |sin| of the angle to a stump's axis
+    for (const CoreStump& s : stumps) {
+      const double c = glm::dot(pole, glm::normalize(s.direction));
+      nearest = std::min(nearest, std::sqrt(std::max(0.0, 1.0 - c * c)));
+    }
+    if (nearest > best) best = nearest, best_pole = pole;
+  }
+  // The seam's half plane: the perpendicular farthest from the stumps' axes projected on the equator.
+  const Vec3 e0 = any_perpendicular(best_pole), e1 = glm::cross(best_pole, e0);
+  Vec3 best_seam = e0;
+  double best_seam_gap = -1.0;
+  for (int k = 0; k < 72; ++k) {
+    const double a = k * (2.0 * M_PI / 72);
+    const Vec3 seam = std::cos(a) * e0 + std::sin(a) * e1;
+    double gap = 2.0;
+    for (const CoreStump& s : stumps) {
+      const Vec3 d = glm::normalize(s.direction);
+      const Vec3 flat = d - glm::dot(d, best_pole) * best_pole;
+      if (glm::length(flat) < 1e-9) continue;
+      gap = std::min(gap, glm::length(glm::normalize(flat) - seam));
+    }
+    if (gap > best_seam_gap) best_seam_gap = gap, best_seam = seam;
+  }
+  return gp_Ax2(gp_Pnt(0, 0, 0), dir(best_pole), dir(best_seam));
+}
+
+// Which stump's collar disk `face` is (or -1): a plane through the collar's center, orthogonal to the stump, bounded
+// by a single circle of the collar's radius around that center.
+int collar_disk_index(const TopoDS_Face& face, const std::vector<CoreStump>& stumps, const std::vector<double>& collars) {
+  Handle(Geom_Plane) plane = Handle(Geom_Plane)::DownCast(BRep_Tool::Surface(face));
+  if (plane.IsNull()) return -1;
+  TopoDS_Edge only;
+  int edges = 0;
+  for (TopExp_Explorer x(face, TopAbs_EDGE); x.More(); x.Next()) {
+    if (BRep_Tool::Degenerated(TopoDS::Edge(x.Current()))) continue;
+    only = TopoDS::Edge(x.Current());
+    ++edges;
+  }
+  if (edges != 1) return -1;
+  Standard_Real first, last;
+  Handle(Geom_Circle) circle = Handle(Geom_Circle)::DownCast(BRep_Tool::Curve(only, first, last));
+  if (circle.IsNull()) return -1;
+  const gp_Pnt c = circle->Location();
+  for (std::size_t i = 0; i < stumps.size(); ++i) {
+    const Vec3 d = glm::normalize(stumps[i].direction);
+    const gp_Pnt expected = pnt(collars[i] * d);
+    if (c.Distance(expected) < 1e-9 && std::abs(circle->Radius() - stumps[i].radius_at(collars[i])) < 1e-9 &&
+        std::abs(std::abs(plane->Axis().Direction().Dot(dir(d))) - 1.0) < 1e-12)
+      return static_cast<int>(i);
+  }
+  return -1;
+}
+
 std::shared_ptr<const HubCore> build_transversal_core(const std::vector<CoreStump>& stumps,
                                                       const std::vector<double>& collars) {
   auto out = std::make_shared<HubCore>();
   out->kind = CoreKind::Transversal;
   out->collar_position = collars;
   TopTools_ListOfShape args, tools;
-  args.Append(BRepPrimAPI_MakeSphere(1.0).Shape());
-  std::vector<TopoDS_Face> tops;
+  args.Append(BRepPrimAPI_MakeSphere(generic_sphere_frame(stumps), 1.0).Shape());
   for (std::size_t i = 0; i < stumps.size(); ++i) {
     const CoreStump& s = stumps[i];
     const Vec3 d = glm::normalize(s.direction), e = any_perpendicular(d);
-    // Start where the cone is well inside the ball (the midpoint of the cone's chord through the sphere).
-    const double x0 = s.end_radius * s.sin_phi;
+    // Start where the cone's circle is well inside the ball: halfway between the plane where the cone touches its
+    // end ball and its exit. (Not at the end ball's plane: for cylinders that is the center, where opposite
+    // stumps would meet face to face, nearly coaxial, and the Fuse then lost a collar disk.)
+    const double x0 = 0.5 * (s.end_radius * s.sin_phi + s.exit);
     const double r0 = s.radius_at(x0), r1 = s.radius_at(collars[i]);
     const gp_Ax2 ax(pnt(x0 * d), dir(d), dir(e));
-    TopoDS_Shape stump;
-    if (std::abs(r0 - r1) < 1e-12) {
-      BRepPrimAPI_MakeCylinder m(ax, r0, collars[i] - x0);
-      stump = m.Shape();
-      tops.push_back(m.Cylinder().TopFace());
-    } else {
-      BRepPrimAPI_MakeCone m(ax, r0, r1, collars[i] - x0);
-      stump = m.Shape();
-      tops.push_back(m.Cone().TopFace());
-    }
-    tools.Append(stump);
+    if (std::abs(r0 - r1) < 1e-12)
+      tools.Append(BRepPrimAPI_MakeCylinder(ax, r0, collars[i] - x0).Shape());
+    else
+      tools.Append(BRepPrimAPI_MakeCone(ax, r0, r1, collars[i] - x0).Shape());
   }
   BRepAlgoAPI_Fuse fuse;
   fuse.SetArguments(args);
   fuse.SetTools(tools);
-  fuse.SetNonDestructive(Standard_True);
+  fuse.SetNonDestructive(Standard_False);
   fuse.Build();
   if (!fuse.IsDone() || fuse.HasErrors()) unsupported("the Fuse of a hub's ball and stumps failed");
+  // Find each collar disk in the result by its geometry (a planar face bounded by one circle: the collar's), not
+  // by the Fuse's history, which has reported disks it left untouched as deleted (OCC 7.6, crowded octet hubs).
   const BRep_Builder b;
   b.MakeCompound(out->faces);
-  std::vector<const void*> top_ids;
-  for (const TopoDS_Face& t : tops) {
-    if (fuse.IsDeleted(t) || !fuse.Modified(t).IsEmpty())
-      unsupported("a stump's collar was touched by the Fuse of its hub");
-    top_ids.push_back(t.TShape().get());
-  }
+  std::vector<TopoDS_Face> found(stumps.size());
   for (TopExp_Explorer x(fuse.Shape(), TopAbs_FACE); x.More(); x.Next()) {
-    const void* id = x.Current().TShape().get();
-    if (std::find(top_ids.begin(), top_ids.end(), id) != top_ids.end()) continue;
-    b.Add(out->faces, x.Current());
+    const TopoDS_Face face = TopoDS::Face(x.Current());
+    const int collar = collar_disk_index(face, stumps, collars);
+    if (collar >= 0) {
+      if (!found[collar].IsNull()) unsupported("a stump's collar was split by the Fuse of its hub");
+      found[collar] = face;
+      continue;
+    }
+    b.Add(out->faces, face);
     ++out->face_count;
   }
-  for (const TopoDS_Face& t : tops) {
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    const TopoDS_Face& t = found[i];
+    if (t.IsNull()) {
+      std::ostringstream os;
+      os << "the collar of stump " << i << " (of " << stumps.size() << ") was touched by the Fuse of its hub";
+      if (std::getenv("STEADY_DEBUG_CORES"))
+        for (std::size_t k = 0; k < stumps.size(); ++k)
+          os << "\n  stump " << k << " direction " << stumps[k].direction.x << " " << stumps[k].direction.y << " "
+             << stumps[k].direction.z << " sin_phi " << stumps[k].sin_phi << " end_radius " << stumps[k].end_radius
+             << " collar " << collars[k];
+      unsupported(os.str());
+    }
     TopExp_Explorer x(t, TopAbs_EDGE);
     out->collars.push_back(TopoDS::Edge(x.Current()));
   }
@@ -871,6 +941,8 @@ std::vector<double> place_collars(const std::vector<CoreStump>& stumps, CoreKind
     double lo = std::max(stumps[i].exit, 1e-6), hi = reach;
     auto angle = [&](double x) { return std::atan2(stumps[i].radius_at(x), x); };
     if (angle(hi) > target) unsupported("the stumps stay too close to each other to place their collars");
+    // A stump whose exit circle already lies inside its share needs no push: its collar starts at the exit.
+    if (angle(lo) <= target) hi = lo;
     for (int it = 0; it < 80 && angle(lo) > target; ++it) {
       const double mid = 0.5 * (lo + hi);
       (angle(mid) > target ? lo : hi) = mid;
