@@ -33,6 +33,12 @@ py::dict properties_dict(const steady::LatticeProperties& p) {
   d["beam_shapes"] = p.beam_shapes;
   d["hub_shapes"] = p.hub_shapes;
   d["overlapping_hub_shapes"] = p.overlapping_hub_shapes;
+  d["clean"] = p.clean_verified && p.overlap_count == 0;
+  d["overlap_count"] = p.overlap_count;
+  d["overlap_description"] = p.overlap_description;
+  d["union_clusters"] = p.union_clusters;
+  d["union_hubs"] = p.union_hubs;
+  d["union_error"] = p.union_error;
   return d;
 }
 
@@ -76,22 +82,27 @@ void bind_properties(py::module_& m) {
   lattice
       .def(
           "properties",
-          [](const Lattice& lat, bool check_clean, double tolerance, const py::object& progress) {
+          [](const Lattice& lat, bool check_clean, double tolerance, const py::object& progress, bool union_overlaps) {
             steady::LatticePropertiesOptions o;
             o.check_clean = check_clean;
+            o.union_overlaps = union_overlaps;
             if (!(tolerance > 0.0 && tolerance < 1.0)) value_error("tolerance", "must be in (0, 1)");
             o.hub.tolerance = tolerance;
             return properties_dict(
                 with_progress(progress, [&](steady::Progress& p) { return steady::lattice_properties(lat, o, p); }));
           },
           py::arg("check_clean") = true, py::arg("tolerance") = 1e-12, py::arg("progress") = py::none(),
+          py::arg("union_overlaps") = true,
           R"doc(
 Integral properties of the lattice in closed form (row and slab sums over similar hubs), density 1:
 a dict with 'volume', 'area' (outer surface), 'centroid' (3,), 'inertia' (3x3 about the centroid),
 'clean_verified' (the clean check ran on the whole lattice) and the work done ('beam_shapes', 'hub_shapes',
 'overlapping_hub_shapes': hubs whose stumps overlap, integrated to `tolerance`).
-Raises ValueError naming the overlapping hubs when the lattice is not clean (check_clean=False skips the
-check and returns the sum over hubs). Multiply volume and inertia by a density for mass properties.)doc")
+When hubs of different nodes overlap (the lattice is not clean) they are reported ('clean' False,
+'overlap_count' pairs, 'overlap_description' naming the first) and the properties come from the exact union
+of the overlapping hubs (OpenCASCADE Fuse per cluster, 'union_clusters', 'union_hubs', 'union_error'); with
+union_overlaps=False such a lattice raises ValueError instead. check_clean=False skips the check and returns
+the sum over hubs. Multiply volume and inertia by a density for mass properties.)doc")
       .def(
           "properties_brute_force",
           [](const Lattice& lat) {

@@ -12,6 +12,7 @@
 #include <tuple>
 
 #include "steady/hub_overlaps.hpp"
+#include "steady/hub_union.hpp"
 #include "steady/errors.hpp"
 #include "steady/hub.hpp"
 #include "steady/similar_copies.hpp"
@@ -256,12 +257,18 @@ LatticeProperties properties_from_moments(const MassMoments& m, const Vec3& refe
 LatticeProperties lattice_properties(const Lattice& lattice, const LatticePropertiesOptions& options,
                                      Progress& progress) {
   bool verified = false;
+  HubOverlapReport report;
   if (options.check_clean) {
-    const HubOverlapReport report = check_hub_overlaps(lattice, 10, progress);
-    if (report.overlap_count > 0)
+    // Every pair is needed for the union; more pairs than the union's limit can hold is refused below anyway.
+    report = check_hub_overlaps(lattice, options.union_overlaps ? kMaxUnionHubs * 16 : 10, progress);
+    if (report.overlap_count > 0 && !options.union_overlaps)
       fail_input("lattice", "not clean, " + report.describe() +
-                                ". Its properties are not the sum of its hubs', and the union of overlapping hubs is "
-                                "not computed: thin the beams or nodes, or space the groups further apart");
+                                ". Its properties are not the sum of its hubs': thin the beams or nodes, or space the "
+                                "groups further apart");
+    if (report.overlap_count > static_cast<std::int64_t>(report.overlaps.size()))
+      throw ResourceLimit("lattice: not clean, " + std::to_string(report.overlap_count) +
+                          " pairs of hubs overlap, too many for their exact union (" + report.describe() +
+                          "): thin the beams or nodes, or space the groups further apart");
     verified = report.verified;
   }
   progress.check();
@@ -280,6 +287,21 @@ LatticeProperties lattice_properties(const Lattice& lattice, const LatticeProper
   total += omission_corrections(c);
   LatticeProperties out = finish(c, total);
   out.clean_verified = verified;
+  if (report.overlap_count > 0) {
+    progress.check();
+    // (no progress of its own: it would reset the bar's total; clusters are few and small)
+    const HubUnionCorrection u = hub_union_correction(lattice, report.overlaps, out.reference, options.hub);
+    out = properties_from_moments(out.moments + u.moments, out.reference);
+    out.clean_verified = verified;
+    out.beam_shapes = c.beam_shapes;
+    out.hub_shapes = c.hub_shapes;
+    out.overlapping_hub_shapes = c.overlapping;
+    out.overlap_count = report.overlap_count;
+    out.union_clusters = u.clusters;
+    out.union_hubs = u.hubs;
+    out.union_error = u.volume_error;
+    out.overlap_description = report.describe();
+  }
   progress.finish();
   return out;
 }

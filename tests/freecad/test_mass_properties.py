@@ -80,13 +80,30 @@ class MassPropertiesTest(unittest.TestCase):
         with self.assertRaises(ValueError):
             api.target_density(lat)
 
-    def test_overlapping_hubs_are_reported(self):
-        lat = api.make_lattice(self.doc, preset="cubic", cells=(2, 2, 2), cell_size=2.0, node_radius=1.3,
-                               beam_radius=0.5)  # balls 2.6 wide, 2 apart: neighbours overlap
+    def test_overlapping_hubs_are_reported_and_united(self):
+        # face diagonals 0.5 thick, 1.41 apart at the corners: stumps of neighbouring hubs overlap
+        lat = api.make_lattice(self.doc, preset="FCC", cells=(1, 1, 1), cell_size=2.0, node_radius=0.6,
+                               beam_radius=0.5)
         self.doc.recompute()
-        with self.assertRaises(ValueError) as raised:
-            api.properties(lat)
-        self.assertIn("overlap", str(raised.exception))
+        p = api.properties(lat)
+        self.assertGreater(p["overlaps"], 0)
+        self.assertIn("exact union", p["method"])
+        # Independent answer: OpenCASCADE's fuse of every ball and beam of the lattice.
+        k = api.lattice(lat)
+        centers, radii = k.balls()
+        starts, ends, ra, rb = k.beams()
+        solids = [Part.makeSphere(float(r), FreeCAD.Vector(*map(float, c))) for c, r in zip(centers, radii)]
+        for a, b, r0, r1 in zip(starts, ends, ra, rb):
+            pa, pb = FreeCAD.Vector(*map(float, centers[a])), FreeCAD.Vector(*map(float, centers[b]))
+            axis = pb - pa
+            length = axis.Length
+            axis.normalize()
+            solids.append(Part.makeCylinder(float(r0), length, pa, axis) if abs(r0 - r1) < 1e-12 else
+                          Part.makeCone(float(r0), float(r1), length, pa, axis))
+        fused = solids[0].fuse(solids[1:])
+        self.assertTrue(fused.isValid())
+        self.assertAlmostEqual(p["volume"], fused.Volume, delta=1e-6 * fused.Volume)
+        self.assertAlmostEqual(p["area"], fused.Area, delta=1e-6 * fused.Area)
 
 
 if __name__ == "__main__":

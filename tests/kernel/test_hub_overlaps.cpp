@@ -124,10 +124,17 @@ TEST(HubOverlaps, TouchingIsNotOverlapping) {
   }
 }
 
-TEST(HubOverlaps, PropertiesRefuseNonCleanLatticesNamingTheHubs) {
+TEST(HubOverlaps, PropertiesReportNonCleanLatticesNamingTheHubs) {
   const Lattice dirty = bent_bcc(0.08, 1.05, Counts{2, 2, 2});
+  // By default: reported, and the union of the overlapping hubs is computed (test_hub_union.cpp checks it).
+  const LatticeProperties p = lattice_properties(dirty);
+  EXPECT_GT(p.overlap_count, 0);
+  EXPECT_NE(p.overlap_description.find("hubs (0,0,0,0) and (1,0,0,0)"), std::string::npos) << p.overlap_description;
+  // Without the union: refused, naming them.
+  LatticePropertiesOptions no_union;
+  no_union.union_overlaps = false;
   try {
-    lattice_properties(dirty);
+    lattice_properties(dirty, no_union);
     FAIL() << "a non-clean lattice was accepted";
   } catch (const InvalidInput& e) {
     const std::string what = e.what();

@@ -62,7 +62,7 @@ def test_properties_match_the_brute_force_sum(rng):
         assert np.allclose(fast["inertia"], brute["inertia"], atol=1e-9 * np.abs(brute["inertia"]).max())
 
 
-def test_non_clean_lattice_is_reported_and_refused():
+def test_non_clean_lattice_is_reported_and_united():
     t = sl.Similarity.translation
     lat = sl.Lattice([((0, 0, 0), 0.4), ((0.5, 0.5, 0), 0.4)], [(0, 1, 0, 0, 0, 0.1, 0.1), (1, 1, 0, 0, 1, 0.1, 0.1)],
                      (3, 2, 1), t((1, 0, 0)), t((0, 1, 0)), t((0, 0, 1)))
@@ -71,8 +71,24 @@ def test_non_clean_lattice_is_reported_and_refused():
     a, b, pieces = report["overlaps"][0]
     assert len(a) == 4 and len(b) == 4 and isinstance(pieces, str)
     with pytest.raises(ValueError, match="not clean"):
-        lat.properties()
-    assert lat.properties(check_clean=False)["volume"] > 0
+        lat.properties(union_overlaps=False)
+    p = lat.properties()
+    assert not p["clean"] and p["overlap_count"] == report["overlap_count"]
+    assert "(0,0,0,0) and (0,0,0,1)" in p["overlap_description"]
+    assert p["union_hubs"] == 12 and p["union_clusters"] == 1
+    summed = lat.properties(check_clean=False)
+    # Monte Carlo with the kernel's exact point membership: the union is right, the plain sum is not.
+    rng = np.random.default_rng(5)
+    centers, radii = lat.balls()
+    lo, hi = (centers - radii[:, None]).min(0), (centers + radii[:, None]).max(0)
+    n = 400_000
+    points = lo + rng.random((n, 3)) * (hi - lo)
+    inside = np.asarray(lat.contains(points), bool)
+    box, f = np.prod(hi - lo), inside.mean()
+    mc, sigma = f * box, np.prod(hi - lo) * math.sqrt(f * (1 - f) / n)
+    assert abs(p["volume"] - mc) < 4 * sigma
+    assert abs(summed["volume"] - mc) > 10 * sigma
+    assert np.allclose(p["centroid"], points[inside].mean(0), atol=0.01)
 
 
 def test_scale_radii_reaches_the_target_volume():

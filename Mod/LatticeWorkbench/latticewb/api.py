@@ -111,7 +111,8 @@ def properties(obj):
     """Mass properties of a SteadyLattice (closed form from the kernel) or of a part or any solid (B-rep
     integration): a dict with volume (mm^3), area (mm^2), centroid (mm), inertia (3x3 about the centroid, kg mm^2),
     mass (kg) and density (g/cm^3, the object's Density property, 1 when it has none), and the method used.
-    A lattice whose hubs overlap raises ValueError naming them."""
+    A lattice whose hubs overlap is reported in the report view (which hubs) and measured as the exact union of
+    the overlapping hubs ("overlaps" counts the pairs)."""
     from latticewb.features import mass_properties
     return mass_properties.properties(obj)
 

@@ -18,6 +18,7 @@
 // subtracted and re-added exactly. The moments are taken about a reference point in the middle of the
 // lattice, so that the central inertia does not lose digits to a far origin.
 #include <cstdint>
+#include <string>
 
 #include "steady/hub_properties.hpp"
 #include "steady/lattice.hpp"
@@ -28,8 +29,10 @@ namespace steady {
 
 struct LatticePropertiesOptions {
   HubPropertiesOptions hub;
-  // Run the clean check first and refuse a non-clean lattice (its properties are not the sum of its hubs').
+  // Run the clean check first. Hubs of different nodes that overlap are reported and, with union_overlaps,
+  // their exact union replaces their sum (hub_union.hpp); without, a non-clean lattice is refused.
   bool check_clean = true;
+  bool union_overlaps = true;
 };
 
 struct LatticeProperties {
@@ -46,11 +49,19 @@ struct LatticeProperties {
   std::int64_t overlapping_hub_shapes = 0;
   // The clean check's verdict: verified false when the lattice was too large to check (or not asked).
   bool clean_verified = false;
+  // Overlapping hubs of different nodes (pairs found), and their exact union: clusters and hubs fused, and
+  // the integration's error estimate relative to the clusters' volume. overlap_description names the first few.
+  std::int64_t overlap_count = 0;
+  std::int64_t union_clusters = 0;
+  std::int64_t union_hubs = 0;
+  double union_error = 0.0;
+  std::string overlap_description;
 };
 
-// Closed form from row and slab sums. Throws InvalidInput naming the overlapping hubs when the lattice is not
-// clean (the exact union of overlapping hubs is not implemented), ResourceLimit when the moments overflow
-// doubles, Cancelled when the progress callback asks to stop.
+// Closed form from row and slab sums, plus the exact union of overlapping hubs when the lattice is not clean.
+// Throws InvalidInput naming the overlapping hubs when the lattice is not clean and union_overlaps is off,
+// ResourceLimit when more than kMaxUnionHubs hubs overlap or the moments overflow doubles, Cancelled when the
+// progress callback asks to stop.
 LatticeProperties lattice_properties(const Lattice& lattice, const LatticePropertiesOptions& options = {},
                                      Progress& progress = no_progress());
 

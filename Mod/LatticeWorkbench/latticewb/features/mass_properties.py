@@ -20,7 +20,7 @@ def add_density_property(obj):
 
 def properties(obj):
     """{volume (mm^3), area (mm^2), centroid (mm), inertia (3x3 kg mm^2 about the centroid), mass (kg), density
-    (g/cm^3), method} of a SteadyLattice (closed form) or any object with a solid Shape (B-rep integration)."""
+    (g/cm^3), method, overlaps (pairs of hubs that overlap: their exact union was used)} of a SteadyLattice (closed form) or any object with a solid Shape (B-rep integration)."""
     density = getattr(obj, "Density", 1.0)
     if not (math.isfinite(density) and density > 0.0):
         raise ValueError("Density: must be > 0 (got %g)" % density)
@@ -31,6 +31,12 @@ def properties(obj):
         centroid = tuple(float(x) for x in p["centroid"])
         inertia = [[float(x) for x in row] for row in p["inertia"]]  # density 1: mm^5
         method = "closed form (kernel sums over similar hubs)"
+        overlaps = p["overlap_count"]
+        if overlaps:
+            # Not clean: say so, and which hubs; the kernel replaced their sum by their exact union.
+            method += ", plus the exact union of %d overlapping hubs in %d cluster(s)" % (
+                p["union_hubs"], p["union_clusters"])
+            FreeCAD.Console.PrintWarning("%s is not clean: %s\n" % (obj.Label, p["overlap_description"]))
     else:
         shape = obj.Shape
         if shape.isNull() or not shape.Solids:
@@ -47,6 +53,7 @@ def properties(obj):
         "volume": volume, "area": area, "centroid": centroid,
         "inertia": [[rho * x for x in row] for row in inertia],
         "mass": rho * volume, "density": density, "method": method,
+        "overlaps": overlaps if hasattr(obj, "Preset") else 0,
     }
 
 
