@@ -45,4 +45,21 @@ struct PythonProgress {
   py::object error_type_, error_value_, error_trace_;
 };
 
+// Runs `work(progress)` with the GIL released, reporting to the Python callable `report` (or None): Cancelled
+// becomes steadylattice.Cancelled, or the callable's own exception when it raised one.
+template <class Work>
+auto run_with_progress(const py::object& report, Work&& work) {
+  if (!report.is_none() && !PyCallable_Check(report.ptr()))
+    value_error("progress", "expected a callable progress(fraction) -> bool, or None");
+  PythonProgress python(report);
+  steady::Progress progress(python.callback());
+  try {
+    py::gil_scoped_release release;
+    return work(progress);
+  } catch (const steady::Cancelled&) {
+    python.rethrow_callback_error();
+    throw;
+  }
+}
+
 }  // namespace steadypy

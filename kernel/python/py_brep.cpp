@@ -93,39 +93,44 @@ void bind_brep(py::module_& m) {
   lattice.def(
       "brep",
       [](const Lattice& lat, const py::object& body, const std::string& policy, double skin,
-         const std::string& dangling) {
+         const std::string& dangling, const py::object& progress) {
         const steady::LatticePartRequest request = part_request(body, policy, skin, dangling);
-        std::string text;
-        {
-          py::gil_scoped_release release;
-          text = steady::lattice_part_brep(steady::flatten(lat), request);
-        }
-        return text;
+        return run_with_progress(progress, [&](steady::Progress& p) {
+          return steady::lattice_part_brep(steady::flatten(lat), request, p);
+        });
       },
       py::arg("body") = py::none(), py::arg("policy") = "clip", py::arg("skin") = 0.0, py::arg("dangling") = "keep",
+      py::arg("progress") = py::none(),
       "BREP text of the lattice as one solid (a compound of solids when it has several components). body: BREP "
       "text of a solid (Part.Shape.exportBrepToString()) to trim into; policy: 'clip' (cut at the boundary) or "
       "'whole' (keep only hubs entirely inside, never cut); skin: wall thickness of a skin united with the "
-      "lattice; dangling: 'keep' or 'remove' beams joining a kept hub to a dropped one.");
+      "lattice; dangling: 'keep' or 'remove' beams joining a kept hub to a dropped one. progress: None or a "
+      "callable progress(fraction) called on this thread about every 0.1 s with a growing fraction in [0, 1] "
+      "(1 at the end); returning False cancels: steadylattice.Cancelled is raised soon after (an exception the "
+      "callable raises is raised instead), and nothing has changed.");
   lattice.def(
       "write_step",
       [](const Lattice& lat, const std::string& path, const py::object& body, const std::string& policy, double skin,
          const std::string& dangling, const std::string& lattice_name, const std::string& skin_name,
-         const py::object& lattice_color, const py::object& skin_color) {
+         const py::object& lattice_color, const py::object& skin_color, const py::object& progress) {
         const steady::LatticePartRequest request = part_request(body, policy, skin, dangling);
         steady::StepNames names;
         names.lattice = lattice_name;
         names.skin = skin_name;
         names.lattice_color = to_color(lattice_color, "lattice_color");
         names.skin_color = to_color(skin_color, "skin_color");
-        py::gil_scoped_release release;
-        steady::write_lattice_step(path, steady::flatten(lat), request, names);
+        run_with_progress(progress, [&](steady::Progress& p) {
+          steady::write_lattice_step(path, steady::flatten(lat), request, names, p);
+          return 0;
+        });
       },
       py::arg("path"), py::arg("body") = py::none(), py::arg("policy") = "clip", py::arg("skin") = 0.0,
       py::arg("dangling") = "keep", py::arg("lattice_name") = "Lattice", py::arg("skin_name") = "Skin",
       py::arg("lattice_color") = py::make_tuple(0.85, 0.55, 0.20), py::arg("skin_color") = py::make_tuple(0.55, 0.65, 0.80),
+      py::arg("progress") = py::none(),
       "Writes a STEP assembly: the lattice (trimmed to the inner offset when there is a skin) and the skin as two "
-      "named, coloured parts.");
+      "named, coloured parts. progress: as for brep(); a cancelled call raises steadylattice.Cancelled and leaves "
+      "the file untouched (it is written only at the end).");
   m.def(
       "brep_properties",
       [](const std::string& text) {

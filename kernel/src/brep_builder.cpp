@@ -431,7 +431,14 @@ void make_ring_edges(const BRep_Builder& b, Ring& ring) {
 
 }  // namespace
 
-BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selection, CutEdges& cut_edges) {
+// Work units of build_brep_pieces: laying out a distinct hub shape (or building its core) costs about as much as
+// this many spherical faces; a spherical face about two conical ones.
+constexpr std::int64_t kShapeUnits = 20;
+constexpr std::int64_t kHubUnits = 2;
+constexpr std::int64_t kBeamUnits = 1;
+
+BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selection, CutEdges& cut_edges,
+                             Progress& progress) {
   if (static_cast<std::int64_t>(selection.balls.size()) != f.ball_count() ||
       static_cast<std::int64_t>(selection.beams.size()) != f.beam_count() ||
       (!selection.open_cuts.empty() && static_cast<std::int64_t>(selection.open_cuts.size()) != f.beam_count()) ||
@@ -497,9 +504,17 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
     hubs.push_back(std::move(h));
     geometry.push_back(std::move(g));
   }
+  progress.check();
   const HubCatalog catalog = catalog_hubs(geometry);
   std::vector<ShapeWork> shapes(catalog.shapes.size());
+  {
+    std::int64_t built_beams = 0;
+    for (const BeamWork& w : beams) built_beams += w.kind != BeamKind::None;
+    progress.set_total(kShapeUnits * static_cast<std::int64_t>(shapes.size()) +
+                       kHubUnits * static_cast<std::int64_t>(hubs.size()) + kBeamUnits * built_beams + 1);
+  }
   tbb::parallel_for(std::size_t(0), shapes.size(), [&](std::size_t s) {
+    progress.check();
     ShapeWork& w = shapes[s];
     const std::int64_t rep = catalog.representatives[s];
     if (hubs[rep].kind == 0) {
@@ -510,6 +525,7 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
           w.pcurves[c].push_back(approximate_arc_pcurve(w.layout, static_cast<int>(c), arc));
           w.max_error = std::max(w.max_error, w.pcurves[c].back().max_error);
         }
+      progress.advance(kShapeUnits);
       return;
     }
     std::vector<CoreStump> stumps;
@@ -524,6 +540,7 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
     }
     const CoreKind kind = hubs[rep].kind == 1 ? CoreKind::Hull : CoreKind::Transversal;
     w.core = build_hub_core(stumps, kind, place_collars(stumps, kind, kMaxCollarPosition));
+    progress.advance(kShapeUnits);
   });
   out.stats.layout_seconds = seconds_since(start);
   const auto topology_start = std::chrono::steady_clock::now();
@@ -533,6 +550,7 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
   tbb::parallel_for(std::size_t(0), hubs.size(), [&](std::size_t h) {
     HubWork& hub = hubs[h];
     if (hub.kind == 0) return;
+    progress.check();
     const HubPlacement& place = catalog.placements[h];
     const HubCore& core = *shapes[place.shape].core;
     const Ball& ball = f.balls[hub.ball];
@@ -564,6 +582,7 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
   tbb::parallel_for(std::int64_t(0), f.beam_count(), [&](std::int64_t e) {
     BeamWork& w = beams[e];
     if (w.kind == BeamKind::None) return;
+    if (e % 64 == 0) progress.check();
     for (EndCircle& ec : w.end) {
       if (ec.hub < 0 || hubs[ec.hub].kind != 0) continue;
       const HubPlacement& place = catalog.placements[ec.hub];
@@ -646,6 +665,7 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
 
   // Spherical faces of clean hubs.
   tbb::parallel_for(std::size_t(0), hubs.size(), [&](std::size_t h) {
+    progress.advance(kHubUnits);
     if (hubs[h].kind != 0) return;
     const HubPlacement& place = catalog.placements[h];
     build_sphere_face(builder, f.balls[hubs[h].ball], place, shapes[place.shape], hubs[h], beams);
@@ -654,6 +674,7 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
   tbb::parallel_for(std::int64_t(0), f.beam_count(), [&](std::int64_t e) {
     BeamWork& w = beams[e];
     if (w.kind == BeamKind::None) return;
+    progress.advance(kBeamUnits);
     const BeamFrustum& fr = frustums[e];
     const double to_v = 1.0 / fr.cone.cos_phi;
     const Vec3 axis = fr.cone.axis;
@@ -746,6 +767,7 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
     }
   });
 
+  progress.check();  // the last chance to stop: cut_edges changes below
   for (const HubWork& h : hubs) {
     for (const TopoDS_Face& face : h.faces) {
       out.faces.push_back(face);
@@ -779,10 +801,11 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
     for (const CircleLayout& c : w.layout.circles) out.stats.seam_crossing_circles += c.role != CircleRole::Inner;
   }
   out.stats.topology_seconds = seconds_since(topology_start);
+  progress.finish();
   return out;
 }
 
-TopoDS_Shape solids_from_faces(const std::vector<TopoDS_Face>& faces) {
+TopoDS_Shape solids_from_faces(const std::vector<TopoDS_Face>& faces, Progress& progress) {
   const std::int64_t n = static_cast<std::int64_t>(faces.size());
   std::vector<std::int64_t> parent(n);
   std::iota(parent.begin(), parent.end(), 0);
@@ -792,16 +815,23 @@ TopoDS_Shape solids_from_faces(const std::vector<TopoDS_Face>& faces) {
   };
   std::unordered_map<const void*, std::int64_t> first_face;
   first_face.reserve(static_cast<std::size_t>(3 * n));
-  for (std::int64_t i = 0; i < n; ++i)
+  // Units: two per face for the grouping, one per face for the shells, the rest (solids, voids) in finish().
+  progress.set_total(3 * n + 1);
+  constexpr std::int64_t kChunk = 1024;
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (i % kChunk == kChunk - 1) progress.advance(2 * kChunk);
     for (TopExp_Explorer x(faces[i], TopAbs_EDGE); x.More(); x.Next()) {
       const void* key = x.Current().TShape().get();
       auto [it, inserted] = first_face.emplace(key, i);
       if (!inserted) parent[find(i)] = find(it->second);
     }
+  }
+  progress.advance(2 * (n % kChunk));
   std::unordered_map<std::int64_t, std::size_t> shell_of;
   std::vector<TopoDS_Shell> shells;
   const BRep_Builder b;
   for (std::int64_t i = 0; i < n; ++i) {
+    if (i % kChunk == kChunk - 1) progress.advance(kChunk);
     const std::int64_t root = find(i);
     auto [it, inserted] = shell_of.emplace(root, shells.size());
     if (inserted) {
@@ -810,10 +840,12 @@ TopoDS_Shape solids_from_faces(const std::vector<TopoDS_Face>& faces) {
     }
     b.Add(shells[it->second], faces[i]);
   }
+  progress.advance(n % kChunk);
   // A shell whose faces point inward bounds a void (the inside of a skin): it joins the solid around it.
   std::vector<TopoDS_Solid> solids;
   std::vector<TopoDS_Shell> voids;
   for (TopoDS_Shell& s : shells) {
+    progress.check();
     s.Closed(true);
     TopoDS_Solid solid;
     b.MakeSolid(solid);
@@ -838,6 +870,7 @@ TopoDS_Shape solids_from_faces(const std::vector<TopoDS_Face>& faces) {
     if (solids.empty()) throw std::runtime_error("solids_from_faces: a void shell with no solid around it");
     b.Add(solids[host], v);
   }
+  progress.finish();
   if (solids.size() == 1) return solids[0];
   TopoDS_Compound compound;
   b.MakeCompound(compound);
@@ -845,7 +878,10 @@ TopoDS_Shape solids_from_faces(const std::vector<TopoDS_Face>& faces) {
   return compound;
 }
 
-LatticeBrep build_lattice_brep(const FlatLattice& lattice, SeamPreference seams) {
+LatticeBrep build_lattice_brep(const FlatLattice& lattice, SeamPreference seams, Progress& progress) {
+  // Units: the clean check 5, the faces 40, the solids 55 (measured shares, roughly: grouping the faces into
+  // shells and classifying them costs more than building them).
+  progress.set_total(100);
   // Overlapping exit circles on a ball are the business of hub cores; elements meeting foreign ones are not.
   CleanCheckOptions options;
   options.skip_circle_overlaps = true;
@@ -861,10 +897,19 @@ LatticeBrep build_lattice_brep(const FlatLattice& lattice, SeamPreference seams)
   CutEdges cuts;
   BrepSelection selection = BrepSelection::everything(lattice);
   selection.seams = seams;
-  BrepPieces pieces = build_brep_pieces(lattice, selection, cuts);
+  progress.advance(5);
+  BrepPieces pieces;
+  {
+    Progress part(progress, 40);
+    pieces = build_brep_pieces(lattice, selection, cuts, part);
+  }
   LatticeBrep out;
-  out.shape = solids_from_faces(pieces.faces);
+  {
+    Progress part(progress, 55);
+    out.shape = solids_from_faces(pieces.faces, part);
+  }
   out.stats = pieces.stats;
+  progress.finish();
   return out;
 }
 

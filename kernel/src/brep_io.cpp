@@ -13,13 +13,16 @@
 
 #include <sstream>
 
+#include "occ_progress.hpp"
 #include "steady/errors.hpp"
 
 namespace steady {
 
-std::string brep_to_text(const TopoDS_Shape& shape) {
+std::string brep_to_text(const TopoDS_Shape& shape, Progress& progress) {
   std::ostringstream os;
-  BRepTools::Write(shape, os);
+  OccProgress occ(progress);
+  BRepTools::Write(shape, os, occ.range());
+  occ.finish();
   return os.str();
 }
 

@@ -18,6 +18,7 @@
 
 #include "steady/brep_io.hpp"
 #include "steady/errors.hpp"
+#include "occ_progress.hpp"
 
 namespace steady {
 
@@ -37,7 +38,7 @@ constexpr double kThicknessSlack = 1e-6;
 
 }  // namespace
 
-Skin make_skin(const SolidBody& body, double thickness) {
+Skin make_skin(const SolidBody& body, double thickness, Progress& progress) {
   if (!std::isfinite(thickness) || thickness < 0.0) {
     std::ostringstream os;
     os << "must be a thickness >= 0 (got " << thickness << ")";
@@ -47,13 +48,19 @@ Skin make_skin(const SolidBody& body, double thickness) {
   Skin out;
   out.thickness = thickness;
   TopoDS_Shape offset;
+  // The offset is nearly all the work; the checks after it are the last tenth.
+  progress.set_total(10);
+  Progress offset_progress(progress, 9);
+  OccProgress occ(offset_progress);
   try {
     BRepOffsetAPI_MakeOffsetShape maker;
     maker.PerformByJoin(body.solid(), -thickness, kOffsetTolerance, BRepOffset_Skin, Standard_False, Standard_False,
-                        GeomAbs_Arc);
+                        GeomAbs_Arc, Standard_False, occ.range());
+    occ.finish();  // a cancelled offset is not a failed one
     if (!maker.IsDone()) too_thick(thickness, "the inward offset failed");
     offset = maker.Shape();
   } catch (const Standard_Failure& e) {
+    if (occ.cancelled()) throw Cancelled();
     too_thick(thickness, std::string("the inward offset failed: ") + e.GetMessageString());
   }
   TopoDS_Shell inner_shell;
@@ -86,6 +93,7 @@ Skin make_skin(const SolidBody& body, double thickness) {
   b.MakeSolid(out.skin);
   b.Add(out.skin, outer_shell);
   b.Add(out.skin, inner_shell.Reversed());
+  progress.finish();
   return out;
 }
 

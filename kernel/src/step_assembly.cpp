@@ -17,6 +17,7 @@
 
 #include <mutex>
 
+#include "occ_progress.hpp"
 #include "steady/errors.hpp"
 
 namespace steady {
@@ -34,6 +35,12 @@ Handle(TDocStd_Document) new_document() {
   XCAFApp_Application::GetApplication()->NewDocument("MDTV-XCAF", doc);
   return doc;
 }
+
+// Closes an XCAF document however the scope is left (errors, Cancelled).
+struct DocumentCloser {
+  Handle(TDocStd_Document) doc;
+  ~DocumentCloser() { XCAFApp_Application::GetApplication()->Close(doc); }
+};
 
 std::string label_name(const TDF_Label& label) {
   Handle(TDataStd_Name) name;
@@ -72,10 +79,15 @@ void collect(const Handle(XCAFDoc_ShapeTool)& shapes, const Handle(XCAFDoc_Color
 
 }  // namespace
 
-void write_step_assembly(const std::string& path, const std::vector<StepPart>& parts, const std::string& assembly_name) {
+void write_step_assembly(const std::string& path, const std::vector<StepPart>& parts, const std::string& assembly_name,
+                         Progress& progress) {
   if (parts.empty()) fail_input("parts", "there is nothing to write");
+  // Units: the document 5, the translation to STEP entities 45 (OpenCASCADE reports it), the file 50 (it cannot
+  // report: the fraction waits at 0.5 while it is written).
+  progress.set_total(100);
   std::lock_guard<std::mutex> lock(xcaf_mutex());
   Handle(TDocStd_Document) doc = new_document();
+  const DocumentCloser closer{doc};
   Handle(XCAFDoc_ShapeTool) shapes = XCAFDoc_DocumentTool::ShapeTool(doc->Main());
   Handle(XCAFDoc_ColorTool) colors = XCAFDoc_DocumentTool::ColorTool(doc->Main());
   const TDF_Label assembly = shapes->NewShape();
@@ -90,12 +102,20 @@ void write_step_assembly(const std::string& path, const std::vector<StepPart>& p
     TDataStd_Name::Set(component, p.name.c_str());
   }
   shapes->UpdateAssemblies();
+  progress.advance(5);
   STEPCAFControl_Writer writer;
   writer.SetColorMode(Standard_True);
   writer.SetNameMode(Standard_True);
-  const bool ok = writer.Transfer(doc, STEPControl_AsIs) && writer.Write(path.c_str()) == IFSelect_RetDone;
-  XCAFApp_Application::GetApplication()->Close(doc);
+  bool ok = false;
+  {
+    Progress part(progress, 45);
+    OccProgress occ(part);
+    ok = writer.Transfer(doc, STEPControl_AsIs, nullptr, occ.range());
+    occ.finish();  // the last chance to stop: the file is written below
+  }
+  ok = ok && writer.Write(path.c_str()) == IFSelect_RetDone;
   if (!ok) fail_input("path", "cannot write a STEP file to '" + path + "'");
+  progress.finish();
 }
 
 std::vector<StepPart> read_step_parts(const std::string& path) {

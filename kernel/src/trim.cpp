@@ -28,6 +28,7 @@
 #include "steady/errors.hpp"
 #include "steady/skin.hpp"
 #include "steady/solid_body.hpp"
+#include "occ_progress.hpp"
 
 namespace steady {
 
@@ -63,9 +64,12 @@ struct Piece {
   double radius = 0.0;
 };
 
-std::vector<std::vector<Piece>> hub_pieces(const FlatLattice& f, const std::vector<BeamFrustum>& frustums) {
+std::vector<std::vector<Piece>> hub_pieces(const FlatLattice& f, const std::vector<BeamFrustum>& frustums,
+                                           Progress& progress) {
   std::vector<std::vector<Piece>> out(f.ball_count());
+  progress.set_total(f.ball_count());
   tbb::parallel_for(std::int64_t(0), f.ball_count(), [&](std::int64_t i) {
+    progress.advance();
     const Ball& ball = f.balls[i];
     out[i].push_back({ball.center, ball.radius});
     for (const std::int64_t* e = f.incident_begin(i); e != f.incident_end(i); ++e) {
@@ -81,20 +85,27 @@ std::vector<std::vector<Piece>> hub_pieces(const FlatLattice& f, const std::vect
                         std::hypot(0.5 * (x_cut - x_exit), std::max(r_exit, r_cut))});
     }
   });
+  progress.finish();
   return out;
 }
 
 // Inside / outside / crossing of every (non-absorbed) hub against a body's boundary.
 std::vector<HubState> classify_hubs(const FlatLattice& f, const std::vector<char>& absorbed,
                                     const std::vector<std::vector<Piece>>& pieces, const SolidBody& body,
-                                    TrimStats& stats) {
+                                    TrimStats& stats, Progress& progress) {
   const std::int64_t n = f.ball_count();
+  // Units: the triangulation's bounds 20, the exact distances 70 (BRepExtrema, serial: most of the time when many
+  // hubs lie near the boundary), the regions and their point classifications 10.
+  progress.set_total(100);
   std::vector<HubState> state(n, HubState::Absent);
   const double clearance = kClearanceRelative * body.size();
   // The triangulation's lower bound clears most pieces; the rest need the exact distance (serial).
   std::vector<char> clear(n, 0);
   std::vector<std::vector<char>> undecided(n);
-  tbb::parallel_for(std::int64_t(0), n, [&](std::int64_t i) {
+  {
+    Progress bounds(progress, 20, n);
+    tbb::parallel_for(std::int64_t(0), n, [&](std::int64_t i) {
+    bounds.advance();
     if (absorbed[i]) return;
     bool all = true;
     undecided[i].assign(pieces[i].size(), 0);
@@ -104,9 +115,18 @@ std::vector<HubState> classify_hubs(const FlatLattice& f, const std::vector<char
         all = false;
       }
     clear[i] = all;
-  });
+    });
+    bounds.finish();
+  }
+  Progress exact(progress, 70);
+  {
+    std::int64_t count = 0;
+    for (std::int64_t i = 0; i < n; ++i) count += !absorbed[i] && !clear[i];
+    exact.set_total(count);
+  }
   for (std::int64_t i = 0; i < n; ++i) {
     if (absorbed[i] || clear[i]) continue;
+    exact.advance();
     bool all = true;
     for (std::size_t k = 0; k < pieces[i].size() && all; ++k) {
       if (!undecided[i][k]) continue;
@@ -116,6 +136,7 @@ std::vector<HubState> classify_hubs(const FlatLattice& f, const std::vector<char
     clear[i] = all;
     if (!all) state[i] = HubState::Crossing;
   }
+  exact.finish();
   std::vector<std::int64_t> parent(n);
   std::iota(parent.begin(), parent.end(), 0);
   auto find = [&](std::int64_t x) {
@@ -128,9 +149,13 @@ std::vector<HubState> classify_hubs(const FlatLattice& f, const std::vector<char
   for (std::int64_t i = 0; i < n; ++i) {
     if (!clear[i]) continue;
     const std::int64_t r = find(i);
-    if (!root_state[r]) root_state[r] = body.contains(f.balls[i].center) ? 1 : 2;
+    if (!root_state[r]) {
+      progress.check();
+      root_state[r] = body.contains(f.balls[i].center) ? 1 : 2;
+    }
     state[i] = root_state[r] == 1 ? HubState::Inside : HubState::Outside;
   }
+  progress.finish();
   return state;
 }
 
@@ -144,8 +169,9 @@ TopoDS_Shape compound_of(const std::vector<TopoDS_Shape>& shapes) {
 
 // One Boolean, non-destructive (the arguments' untouched sub-shapes, such as the disks at interface cuts, come
 // out as the very same shapes), parallel.
+// Cancelled when the progress is (OpenCASCADE stops at its next check).
 TopoDS_Shape run_boolean(BRepAlgoAPI_BooleanOperation& op, const TopoDS_Shape& a, const TopoDS_Shape& b,
-                         const char* what) {
+                         const char* what, Progress& progress) {
   TopTools_ListOfShape args, tools;
   args.Append(a);
   tools.Append(b);
@@ -153,7 +179,9 @@ TopoDS_Shape run_boolean(BRepAlgoAPI_BooleanOperation& op, const TopoDS_Shape& a
   op.SetTools(tools);
   op.SetNonDestructive(Standard_True);
   op.SetRunParallel(Standard_True);
-  op.Build();
+  OccProgress occ(progress);
+  op.Build(occ.range());
+  occ.finish();  // a Boolean stopped by a cancel is not a failed one
   if (!op.IsDone() || op.HasErrors()) {
     std::ostringstream os;
     os << "OpenCASCADE's " << what << " of the boundary hubs failed";
@@ -166,31 +194,65 @@ TopoDS_Shape run_boolean(BRepAlgoAPI_BooleanOperation& op, const TopoDS_Shape& a
   return op.Shape();
 }
 
+// Work units of trim_lattice (its progress' total). Before the hubs are classified, fixed shares: the body (its
+// triangulation) and its skin (the offset, its triangulation), the hubs' bounding pieces, each classification.
+// What follows depends on the classification: the rest is shared in proportion to the estimates below.
+constexpr std::int64_t kTrimUnits = 100000;
+constexpr std::int64_t kBodyUnits = 1000, kSkinUnits = 4000, kPiecesUnits = 1000, kClassifyUnits = 4000;
+// Estimates of the rest, relative to building one element (ball or beam) = 2, measured on a cubic strut lattice
+// in a cylinder (curved bodies: surface-surface intersections; a box's planes make the Booleans several times
+// cheaper, and everything fast): per beam whose cut needs an exact distance (cluster split); per crossing hub,
+// its cluster's Common with the body, the glued Fuse with the skin or else the Cut through the pores, the check
+// of the faces the Booleans produced; per element, the assembly into solids.
+constexpr std::int64_t kBuildPerElement = 2, kSplitPerBeam = 2, kBooleanPerHub = 2000, kGluedFusePerHub = 800,
+                       kPoresCutPerHub = 3000, kVerifyPerHub = 300, kAssemblePerElement = 3;
+
 }  // namespace
 
-TrimResult trim_lattice(const FlatLattice& f, const TopoDS_Shape& body_shape, const TrimOptions& options) {
+TrimResult trim_lattice(const FlatLattice& f, const TopoDS_Shape& body_shape, const TrimOptions& options,
+                        Progress& progress) {
   if (!std::isfinite(options.skin) || options.skin < 0.0) {
     std::ostringstream os;
     os << "must be a thickness >= 0 (got " << options.skin << ")";
     fail_input("skin", os.str());
   }
+  progress.set_total(kTrimUnits);
+  std::int64_t fixed_units = 0;  // the fixed shares handed out so far
+  auto fixed_part = [&](std::int64_t units) {
+    fixed_units += units;
+    return units;
+  };
   TrimResult out;
   TrimStats& stats = out.stats;
   auto clock = std::chrono::steady_clock::now();
+  progress.check();
   const SolidBody body(body_shape, "body");
+  progress.advance(fixed_part(kBodyUnits));
   std::optional<Skin> skin;
   std::optional<SolidBody> inner;
   if (options.skin > 0.0) {
-    skin = make_skin(body, options.skin);
+    Progress part(progress, fixed_part(kSkinUnits));
+    skin = make_skin(body, options.skin, part);
     inner.emplace(skin->inner, "skin");
     out.skin = skin->skin;
   }
   const std::vector<BeamFrustum> frustums = beam_frustums(f);
   const std::vector<char> absorbed = absorbed_balls(f, frustums);
-  const std::vector<std::vector<Piece>> pieces = hub_pieces(f, frustums);
-  const std::vector<HubState> outer_state = classify_hubs(f, absorbed, pieces, body, stats);
+  std::vector<std::vector<Piece>> pieces;
+  {
+    Progress part(progress, fixed_part(kPiecesUnits));
+    pieces = hub_pieces(f, frustums, part);
+  }
+  std::vector<HubState> outer_state;
+  {
+    Progress part(progress, fixed_part(kClassifyUnits));
+    outer_state = classify_hubs(f, absorbed, pieces, body, stats, part);
+  }
   std::vector<HubState> inner_state = outer_state;
-  if (inner) inner_state = classify_hubs(f, absorbed, pieces, *inner, stats);
+  if (inner) {
+    Progress part(progress, fixed_part(kClassifyUnits));
+    inner_state = classify_hubs(f, absorbed, pieces, *inner, stats, part);
+  }
   stats.classify_seconds = seconds_since(clock);
 
   // Roles: interior hubs are built whole with no Boolean; band hubs go through the Booleans.
@@ -249,6 +311,38 @@ TrimResult trim_lattice(const FlatLattice& f, const TopoDS_Shape& body_shape, co
   // Clip: the clusters meet the body, or with a skin its inner offset. Whole with a skin: the band is fused with the
   // skin in one Boolean (see below) and is not split.
   const bool unite = skin && options.unite_skin;
+  const bool has_band = std::any_of(band.begin(), band.end(), [](char c) { return c; });
+
+  // The rest of the progress, in proportion to the work left (estimates in elements built).
+  std::int64_t band_hubs = 0, interior_elements = 0, band_elements = 0, band_band_beams = 0;
+  for (std::int64_t i = 0; i < n; ++i) {
+    band_hubs += band[i];
+    interior_elements += interior[i];
+  }
+  band_elements = band_hubs;
+  for (std::int64_t e = 0; e < f.beam_count(); ++e) {
+    if (!beam_kept[e]) continue;
+    interior_elements += interior_beams[e];
+    band_elements += band_beams[e];
+    band_band_beams += band[f.beams[e].a] && band[f.beams[e].b];
+  }
+  const std::int64_t split_weight = kSplitPerBeam * band_band_beams;
+  const std::int64_t build_weight = kBuildPerElement * (band_elements + interior_elements);
+  const std::int64_t boolean_weight =
+      has_band ? (options.policy == TrimPolicy::Clip ? kBooleanPerHub : kBuildPerElement) * band_hubs : 0;
+  const std::int64_t union_weight =
+      has_band && unite ? (options.policy == TrimPolicy::Clip ? kGluedFusePerHub : kPoresCutPerHub) * band_hubs : 0;
+  const std::int64_t verify_weight = has_band && options.verify_booleans ? kVerifyPerHub * band_hubs : 0;
+  const std::int64_t assemble_weight = kAssemblePerElement * (band_elements + interior_elements) + 1;
+  const std::int64_t weights =
+      split_weight + build_weight + boolean_weight + union_weight + verify_weight + assemble_weight;
+  const std::int64_t rest_units = kTrimUnits - fixed_units;
+  auto rest_part = [&](std::int64_t weight) {
+    return static_cast<std::int64_t>(static_cast<double>(rest_units) * static_cast<double>(weight) /
+                                     static_cast<double>(weights));
+  };
+  Progress split_progress(progress, rest_part(split_weight), std::max<std::int64_t>(1, band_band_beams));
+
   std::vector<const SolidBody*> boundaries;
   if (options.policy == TrimPolicy::Clip) boundaries.push_back(inner ? &*inner : &body);
   const bool clusters_wanted = !boundaries.empty();
@@ -262,6 +356,7 @@ TrimResult trim_lattice(const FlatLattice& f, const TopoDS_Shape& body_shape, co
   };
   for (std::int64_t e = 0; e < f.beam_count(); ++e) {
     if (!beam_kept[e] || !band[f.beams[e].a] || !band[f.beams[e].b]) continue;
+    split_progress.advance();
     if (!clusters_wanted) {
       cluster_parent[find(f.beams[e].a)] = find(f.beams[e].b);
       continue;
@@ -281,23 +376,28 @@ TrimResult trim_lattice(const FlatLattice& f, const TopoDS_Shape& body_shape, co
   // A clear cut inside one cluster stays whole: its two disks would be coincident faces of one Boolean argument.
   for (std::int64_t e = 0; e < f.beam_count(); ++e)
     if (split[e] && find(f.beams[e].a) == find(f.beams[e].b)) split[e] = 0;
+  split_progress.finish();
 
   clock = std::chrono::steady_clock::now();
   CutEdges cuts;
   BrepPieces band_pieces;
-  const bool has_band = std::any_of(band.begin(), band.end(), [](char c) { return c; });
   if (has_band) {
     BrepSelection sel;
     sel.balls = band;
     sel.beams = band_beams;
     sel.split = split;
-    band_pieces = build_brep_pieces(f, sel, cuts);
+    Progress part(progress, rest_part(kBuildPerElement * band_elements));
+    band_pieces = build_brep_pieces(f, sel, cuts, part);
   }
   BrepSelection sel;
   sel.balls = interior;
   sel.beams = interior_beams;
   sel.open_cuts = open_cuts;
-  BrepPieces interior_pieces = build_brep_pieces(f, sel, cuts);
+  BrepPieces interior_pieces;
+  {
+    Progress part(progress, rest_part(kBuildPerElement * interior_elements));
+    interior_pieces = build_brep_pieces(f, sel, cuts, part);
+  }
   stats.build_seconds = seconds_since(clock);
 
   clock = std::chrono::steady_clock::now();
@@ -351,22 +451,35 @@ TrimResult trim_lattice(const FlatLattice& f, const TopoDS_Shape& body_shape, co
       tool = skin ? &skin->inner : &body.solid();
       what = skin ? "Common with the inner body" : "Common with the body";
     }
+    // The union with the skin (one Boolean, and a second one should the first go wrong) and the check of what the
+    // Booleans produced.
+    Progress union_progress(progress, rest_part(union_weight + verify_weight), union_weight + verify_weight + 1);
     std::vector<TopoDS_Shape> results(cluster_faces.size()), unclipped(cluster_faces.size());
     tbb::enumerable_thread_specific<TopoDS_Shape> tool_copies;
+    // Each cluster's share of the Booleans' progress is its number of faces; a cancel stops the clusters not yet
+    // started, and the running Booleans at their next check.
+    Progress booleans(progress, rest_part(boolean_weight), static_cast<std::int64_t>(band_pieces.faces.size()));
     tbb::parallel_for(std::size_t(0), cluster_faces.size(), [&](std::size_t c) {
+      Progress cluster(booleans, static_cast<std::int64_t>(cluster_faces[c].size()), 10);
+      cluster.check();
       const TopoDS_Shape solid = solids_from_faces(cluster_faces[c]);
       unclipped[c] = solid;
       if (!tool) {
         results[c] = solid;
+        cluster.finish();
         return;
       }
+      cluster.advance(1);
       // Each thread clips against its own copy of the body: the Booleans then share no mutable data.
       TopoDS_Shape& copy = tool_copies.local();
       if (copy.IsNull()) copy = BRepBuilderAPI_Copy(*tool).Shape();
       BRepAlgoAPI_Common op;
-      results[c] = run_boolean(op, solid, copy, what);
+      Progress boolean(cluster, 9);
+      results[c] = run_boolean(op, solid, copy, what, boolean);
       track(op, static_cast<int>(c));
+      cluster.finish();
     });
+    booleans.finish();
     // Checks one attempt: every interface disk untouched, the two disks of a split beam with one fate, the
     // Boolean's faces valid (OpenCASCADE reports success on some results it got wrong: check what it produced,
     // only that; the rest was built exactly and the solids are assembled again below). Returns the faces to keep,
@@ -390,8 +503,10 @@ TrimResult trim_lattice(const FlatLattice& f, const TopoDS_Shape& body_shape, co
         if (!removed_index.count(x.Current().TShape().get()))
           kept.push_back(TopoDS::Face(pores ? x.Current().Reversed() : x.Current()));
       if (options.verify_booleans) {
+        union_progress.check();
         const TopoDS_Shape produced = compound_of(std::vector<TopoDS_Shape>(kept.begin(), kept.end()));
         if (!is_valid(produced)) return "its Boolean produced invalid faces (" + validity_report(produced, 2) + ")";
+        union_progress.advance(verify_weight);
       }
       return "";
     };
@@ -401,7 +516,9 @@ TrimResult trim_lattice(const FlatLattice& f, const TopoDS_Shape& body_shape, co
     auto through_pores = [&](std::vector<TopoDS_Face>& kept) {
       for (Removed& r : removed) r.fate = Fate::Present, r.changed_by = -2;
       BRepAlgoAPI_Cut op;
-      const TopoDS_Shape pores = run_boolean(op, skin->inner, compound_of(unclipped), "Cut of the inner body by the boundary hubs");
+      Progress part(union_progress, union_weight);
+      const TopoDS_Shape pores = run_boolean(op, skin->inner, compound_of(unclipped),
+                                             "Cut of the inner body by the boundary hubs", part);
       track(op, -1);
       for (TopExp_Explorer x(body.solid(), TopAbs_FACE); x.More(); x.Next()) kept.push_back(TopoDS::Face(x.Current()));
       return collect(pores, true, kept);
@@ -415,7 +532,8 @@ TrimResult trim_lattice(const FlatLattice& f, const TopoDS_Shape& body_shape, co
       // get it wrong, the union is done again through the pores.
       BRepAlgoAPI_Fuse op;
       op.SetGlue(BOPAlgo_GlueShift);
-      const TopoDS_Shape merged = run_boolean(op, skin->skin, compound_of(results), "glued Fuse with the skin");
+      Progress part(union_progress, union_weight);
+      const TopoDS_Shape merged = run_boolean(op, skin->skin, compound_of(results), "glued Fuse with the skin", part);
       track(op, -1);
       error = collect(merged, false, kept);
       if (!error.empty()) {
@@ -430,6 +548,7 @@ TrimResult trim_lattice(const FlatLattice& f, const TopoDS_Shape& body_shape, co
       error = collect(compound_of(results), false, kept);
     }
     if (!error.empty()) throw std::runtime_error("trim: " + error + "; the pieces cannot be glued");
+    union_progress.finish();
     faces.insert(faces.end(), kept.begin(), kept.end());
   } else if (skin && options.unite_skin) {
     for (TopExp_Explorer x(skin->skin, TopAbs_FACE); x.More(); x.Next()) faces.push_back(TopoDS::Face(x.Current()));
@@ -437,7 +556,11 @@ TrimResult trim_lattice(const FlatLattice& f, const TopoDS_Shape& body_shape, co
   stats.boolean_seconds = seconds_since(clock);
   clock = std::chrono::steady_clock::now();
   if (faces.empty()) fail_input("body", "nothing of the lattice lies inside the body");
-  const TopoDS_Shape shape = solids_from_faces(faces);
+  TopoDS_Shape shape;
+  {
+    Progress part(progress, rest_part(assemble_weight));
+    shape = solids_from_faces(faces, part);
+  }
   if (skin && !options.unite_skin) {
     out.lattice = shape;
     out.part = compound_of({out.skin, out.lattice});
@@ -447,6 +570,7 @@ TrimResult trim_lattice(const FlatLattice& f, const TopoDS_Shape& body_shape, co
   }
   stats.faces = static_cast<std::int64_t>(faces.size());
   stats.assemble_seconds = seconds_since(clock);
+  progress.finish();
   return out;
 }
 

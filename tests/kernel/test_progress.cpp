@@ -51,5 +51,39 @@ TEST(Progress, NoProgressNeverCancels) {
   EXPECT_FALSE(no_progress().cancelled());
 }
 
+TEST(Progress, PartsAdvanceTheirParentInProportionFromAnyThread) {
+  std::vector<double> seen;
+  Progress root([&](double f) { seen.push_back(f); return true; }, 1000);
+  root.set_report_interval(std::chrono::milliseconds(0));
+  {
+    Progress part(root, 600, 7);  // 600 of the root's 1000 units over 7 steps of its own
+    tbb::parallel_for(0, 7, [&](int) { part.advance(); });
+    EXPECT_NEAR(root.fraction(), 0.6, 1e-12);
+    part.finish();  // already complete: nothing more
+    EXPECT_NEAR(root.fraction(), 0.6, 1e-12);
+  }
+  {
+    Progress part(root, 400);
+    Progress inner(part, 1, 3);  // a part of a part, finished early
+    inner.advance();
+    inner.finish();
+    EXPECT_NEAR(root.fraction(), 1.0, 1e-12);
+  }
+  EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+  root.finish();
+  EXPECT_DOUBLE_EQ(seen.back(), 1.0);
+}
+
+TEST(Progress, APartIsCancelledWithItsParent) {
+  Progress root([](double f) { return f < 0.5; }, 10);
+  root.set_report_interval(std::chrono::milliseconds(0));
+  Progress part(root, 10, 100);
+  EXPECT_NO_THROW(part.advance(40));
+  EXPECT_THROW(part.advance(20), Cancelled);  // the root reports 0.6 and is cancelled
+  EXPECT_TRUE(part.cancelled());
+  EXPECT_THROW(part.check(), Cancelled);
+  EXPECT_NO_THROW(part.finish());  // finish never throws
+}
+
 }  // namespace
 }  // namespace steady

@@ -12,12 +12,19 @@
 #include <TopoDS_Compound.hxx>
 #include <gp_Pln.hxx>
 
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
 #include <random>
 
 #include "steady/brep_builder.hpp"
 #include "steady/brep_io.hpp"
 #include "steady/errors.hpp"
 #include "steady/flat_lattice.hpp"
+#include "steady/lattice_part.hpp"
+#include "steady/progress.hpp"
+#include "steady/step_assembly.hpp"
 #include "steady/trim.hpp"
 #include "test_lattices.hpp"
 
@@ -269,6 +276,91 @@ TEST(Trim, BadInputGetsClearMessages) {
   EXPECT_NE(message(box(0.1, 0.9), whole).find("policy:"), std::string::npos) << message(box(0.1, 0.9), whole);
   EXPECT_THROW(trim_policy_from_string("cut"), InvalidInput);
   EXPECT_THROW(dangling_from_string("maybe"), InvalidInput);
+}
+
+// A Progress reporting at every advance on this thread, recording the fractions; it cancels at its `stop_at`-th
+// call (0: never).
+struct Recorder {
+  std::vector<double> seen;
+  std::size_t stop_at = 0;
+  Progress progress{[this](double f) {
+                      seen.push_back(f);
+                      return stop_at == 0 || seen.size() < stop_at;
+                    }};
+  explicit Recorder(std::size_t stop = 0) : stop_at(stop) { progress.set_report_interval(std::chrono::milliseconds(0)); }
+};
+
+// Cancelling a trim at several points (early calls, then later and later into the classification, the build, the
+// Booleans and the assembly) throws Cancelled with no call after the cancelling one; a full run afterwards gives
+// the very same part. Clip with and without a skin (the skin adds the offset and the glued union).
+TEST(Trim, CancelledAtSeveralPointsThenAFullRunGivesTheSamePart) {
+  const FlatLattice f = grid_lattice(5);
+  for (double skin : {0.0, 0.3}) {
+    const std::string what = skin > 0 ? "with skin" : "no skin";
+    const TopoDS_Shape body = skin > 0 ? box(-0.7, 4.3) : box(-0.4, 3.4);
+    TrimOptions o;
+    o.skin = skin;
+    Recorder full;
+    const TrimResult reference = trim_lattice(f, body, o, full.progress);
+    expect_valid_single_solid(reference.part, what);
+    ASSERT_GE(full.seen.size(), 20u) << what;
+    EXPECT_TRUE(std::is_sorted(full.seen.begin(), full.seen.end())) << what;
+    EXPECT_GE(full.seen.front(), 0.0) << what;
+    EXPECT_DOUBLE_EQ(full.seen.back(), 1.0) << what;
+    const std::size_t calls = full.seen.size();
+    // The number of calls on this thread varies a little from run to run (its share of the parallel loops): the
+    // later stops stay well before the end.
+    std::vector<double> stopped_at;
+    for (std::size_t stop : {std::size_t(1), std::size_t(2), std::size_t(5), calls / 4, calls / 2, calls * 3 / 4}) {
+      Recorder r(stop);
+      EXPECT_THROW(trim_lattice(f, body, o, r.progress), Cancelled) << what << ", stop at call " << stop;
+      EXPECT_EQ(r.seen.size(), stop) << what << ": called again after it cancelled";
+      EXPECT_TRUE(r.progress.cancelled());
+      if (!r.seen.empty()) stopped_at.push_back(r.seen.back());
+    }
+    EXPECT_GT(stopped_at.back(), 0.3) << what << ": the late stops reached into the build and the Booleans";
+    const TrimResult again = trim_lattice(f, body, o);
+    expect_valid_single_solid(again.part, what + ", after the cancels");
+    EXPECT_NEAR(shape_volume(again.part) / shape_volume(reference.part), 1.0, 1e-12) << what;
+    EXPECT_EQ(face_count(again.part), face_count(reference.part)) << what;
+  }
+}
+
+// The facade: the untrimmed lattice, the trimmed part as BREP text and the STEP assembly report growing fractions
+// up to 1, and a cancelled STEP export leaves no file.
+TEST(LatticePart, ProgressAndCancelForTextAndStep) {
+  const FlatLattice f = grid_lattice(4);
+  LatticePartRequest whole_lattice;
+  Recorder plain;
+  const std::string text = lattice_part_brep(f, whole_lattice, plain.progress);
+  EXPECT_EQ(text, lattice_part_brep(f, whole_lattice));
+  EXPECT_TRUE(std::is_sorted(plain.seen.begin(), plain.seen.end()));
+  ASSERT_FALSE(plain.seen.empty());
+  EXPECT_DOUBLE_EQ(plain.seen.back(), 1.0);
+  Recorder early(3);
+  EXPECT_THROW(lattice_part_brep(f, whole_lattice, early.progress), Cancelled);
+
+  LatticePartRequest request;
+  request.body_brep = brep_to_text(box(-0.7, 3.3));
+  request.trim.skin = 0.3;
+  const std::string path = ::testing::TempDir() + "steady_cancelled_part.step";
+  std::remove(path.c_str());
+  Recorder counting;
+  write_lattice_step(path, f, request, {}, counting.progress);
+  ASSERT_TRUE(std::ifstream(path).good());
+  const std::vector<StepPart> parts = read_step_parts(path);
+  ASSERT_EQ(parts.size(), 2u);
+  std::remove(path.c_str());
+  EXPECT_TRUE(std::is_sorted(counting.seen.begin(), counting.seen.end()));
+  EXPECT_DOUBLE_EQ(counting.seen.back(), 1.0);
+  for (std::size_t stop : {std::size_t(1), counting.seen.size() / 2, counting.seen.size() * 4 / 5}) {
+    Recorder r(stop);
+    EXPECT_THROW(write_lattice_step(path, f, request, {}, r.progress), Cancelled) << "stop at call " << stop;
+    EXPECT_FALSE(std::ifstream(path).good()) << "a cancelled export wrote " << path;
+  }
+  write_lattice_step(path, f, request);
+  EXPECT_EQ(read_step_parts(path).size(), 2u);
+  std::remove(path.c_str());
 }
 
 }  // namespace

@@ -172,3 +172,44 @@ def test_hull_model_lattice_is_one_valid_solid():
     # More than the balls, less than the balls plus full-length cylinders between them.
     balls = 27 * 4 / 3 * math.pi * 0.25 ** 3
     assert balls < props["volume"] < balls + lat.beam_count * math.pi * 0.25 ** 2 * 1.0
+
+
+def test_progress_grows_to_one_and_cancel_raises():
+    """brep(progress=...): fractions grow within [0, 1] and end at 1; False cancels with steadylattice.Cancelled
+    and no call after it; an exception the callable raises comes out as itself; the result after a cancel is the
+    same as without progress."""
+    lat = strut_lattice(4)
+    cylinder = body("cylinder.brep")  # curved: the Booleans last long enough for several reports (~1 s)
+    seen = []
+    text = lat.brep(body=cylinder, progress=lambda f: seen.append(f) or True)
+    assert len(seen) >= 3, seen
+    assert seen == sorted(seen)
+    assert 0.0 <= seen[0] and seen[-1] == 1.0
+
+    calls = []
+    with pytest.raises(sl.Cancelled):
+        lat.brep(body=cylinder, progress=lambda f: calls.append(f) or len(calls) < 2)
+    assert len(calls) == 2 and calls[-1] < 1.0
+
+    def broken(fraction):
+        raise ZeroDivisionError("from the callback")
+
+    with pytest.raises(ZeroDivisionError, match="from the callback"):
+        lat.brep(body=cylinder, progress=broken)
+    with pytest.raises(ValueError, match="progress"):
+        lat.brep(body=cylinder, progress=3)
+    again = sl.brep_properties(lat.brep(body=cylinder))
+    assert again["valid"]
+    assert again["volume"] == pytest.approx(sl.brep_properties(text)["volume"], rel=1e-12)
+
+
+def test_write_step_progress_and_cancel_leaves_no_file(tmp_path):
+    lat = strut_lattice(4)
+    path = str(tmp_path / "part.step")
+    with pytest.raises(sl.Cancelled):
+        lat.write_step(path, body=body("cylinder.brep"), skin=0.1, progress=lambda f: False)
+    assert not os.path.exists(path)
+    seen = []
+    lat.write_step(path, body=body("cylinder.brep"), skin=0.1, progress=lambda f: seen.append(f) or True)
+    assert seen == sorted(seen) and seen[-1] == 1.0
+    assert {p["name"] for p in sl.read_step(path)} == {"Lattice", "Skin"}

@@ -173,7 +173,9 @@ def _export_step(objects, path):
     import Import
     if len(objects) == 1 and hasattr(objects[0], "Policy") and hasattr(objects[0], "Skin"):
         from latticewb.features import lattice_part
-        lattice_part.write_step_assembly(objects[0], path)
+        from latticewb.progress import LongOperation
+        with LongOperation("Exporting %s" % objects[0].Label) as report:
+            lattice_part.write_step_assembly(objects[0], path, report)  # trims again: shows progress, cancellable
         return
     shapes = [export_shape(o) for o in objects]
     if all(shape is o.Shape for shape, o in zip(shapes, objects)):
@@ -200,7 +202,9 @@ def export(objects, path):
     """Writes `objects` to `path`; the format follows the extension:
     .step/.stp (STEP, one part per object with its name; a LatticePart alone: its skin and lattice as two parts),
     .brep/.brp (BREP of the compound),
-    .json (the lattice file of a single SteadyLattice)."""
+    .json (the lattice file of a single SteadyLattice).
+    Writing a LatticePart's STEP assembly trims it again, with FreeCAD's progress bar; a cancel raises
+    steadylattice.Cancelled and writes nothing."""
     objects = list(objects)
     if not objects:
         raise ValueError("objects: nothing to export")

@@ -63,6 +63,35 @@ class LongOperation:
         return False
 
 
+def keep_previous_shape(obj, what):
+    """For a feature's execute() when the user cancelled: returning normally (no error, so no traceback in the
+    report view) keeps the previous shape; this says so in the report view, and touches the object once the
+    recompute is over, so it shows as needing recompute (FreeCAD clears a touch made inside execute())."""
+    FreeCAD.Console.PrintWarning("%s: %s cancelled; the previous shape is kept (recompute to try again)\n"
+                                 % (obj.Label, what))
+    global _toucher
+    if _toucher is None:
+        _toucher = _TouchAfterRecompute()
+        FreeCAD.addDocumentObserver(_toucher)
+    _toucher.pending.setdefault(obj.Document.Name, set()).add(obj.Name)
+
+
+class _TouchAfterRecompute:
+    """Document observer: touches the objects whose recompute was cancelled when their document's recompute ends."""
+
+    def __init__(self):
+        self.pending = {}  # document name -> names of objects to touch
+
+    def slotRecomputedDocument(self, doc):
+        for name in self.pending.pop(doc.Name, ()):
+            obj = doc.getObject(name)
+            if obj is not None:
+                obj.touch()
+
+
+_toucher = None
+
+
 def check_cancelled(report, fraction):
     """For Python loops: report progress and raise steadylattice.Cancelled when the user cancelled."""
     if report is not None and report(fraction) is False:

@@ -23,6 +23,7 @@
 
 #include "steady/flat_lattice.hpp"
 #include "steady/lattice.hpp"
+#include "steady/progress.hpp"
 #include "steady/sphere_layout.hpp"
 
 namespace steady {
@@ -79,12 +80,14 @@ struct BrepPieces {
   BrepBuildStats stats;
 };
 
-// Builds the selected part. Cut edges found in `cut_edges` are reused; new ones are added to it.
-BrepPieces build_brep_pieces(const FlatLattice& lattice, const BrepSelection& selection, CutEdges& cut_edges);
+// Builds the selected part. Cut edges found in `cut_edges` are reused; new ones are added to it (only when the
+// build succeeds: Cancelled or an error leaves it as it was).
+BrepPieces build_brep_pieces(const FlatLattice& lattice, const BrepSelection& selection, CutEdges& cut_edges,
+                             Progress& progress = no_progress());
 
 // Groups faces into connected shells (faces sharing an edge), one solid per shell: a TopoDS_Solid when there is
 // one, otherwise a compound of solids (a lattice may have several components, lone balls for instance).
-TopoDS_Shape solids_from_faces(const std::vector<TopoDS_Face>& faces);
+TopoDS_Shape solids_from_faces(const std::vector<TopoDS_Face>& faces, Progress& progress = no_progress());
 
 struct LatticeBrep {
   TopoDS_Shape shape;
@@ -93,7 +96,8 @@ struct LatticeBrep {
 
 // The whole lattice. Hubs whose exit circles overlap (the hull model, crowded hubs) are built from cores; any
 // other issue of the clean check (elements meeting foreign ones) throws InvalidInput naming the first offenders.
-LatticeBrep build_lattice_brep(const FlatLattice& lattice, SeamPreference seams = SeamPreference::FewestCrossings);
+LatticeBrep build_lattice_brep(const FlatLattice& lattice, SeamPreference seams = SeamPreference::FewestCrossings,
+                               Progress& progress = no_progress());
 LatticeBrep build_lattice_brep(const Lattice& lattice);
 
 }  // namespace steady

@@ -6,10 +6,13 @@
 #include <cstdint>
 #include <string>
 
+#include "steady/progress.hpp"
+
 namespace steady {
 
-// OpenCASCADE's BREP text (what FreeCAD's Part.Shape.exportBrepToString gives and importBrep reads).
-std::string brep_to_text(const TopoDS_Shape& shape);
+// OpenCASCADE's BREP text (what FreeCAD's Part.Shape.exportBrepToString gives and importBrep reads). Cancelled
+// when the progress is cancelled.
+std::string brep_to_text(const TopoDS_Shape& shape, Progress& progress = no_progress());
 // Reads BREP text; throws InvalidInput naming `field` when the text does not parse or holds no shape.
 TopoDS_Shape brep_from_text(const std::string& text, const std::string& field);
 

@@ -8,6 +8,7 @@
 
 #include "steady/flat_lattice.hpp"
 #include "steady/lattice.hpp"
+#include "steady/progress.hpp"
 #include "steady/trim.hpp"
 
 namespace steady {
@@ -18,8 +19,9 @@ struct LatticePartRequest {
 };
 
 // The part's solid as BREP text. InvalidInput for a skin without a body, and for everything trim_lattice and
-// build_lattice_brep refuse.
-std::string lattice_part_brep(const FlatLattice& lattice, const LatticePartRequest& request);
+// build_lattice_brep refuse; Cancelled soon after the progress is cancelled.
+std::string lattice_part_brep(const FlatLattice& lattice, const LatticePartRequest& request,
+                              Progress& progress = no_progress());
 
 struct StepNames {
   std::string assembly = "LatticePart";
@@ -30,8 +32,8 @@ struct StepNames {
 };
 
 // Writes a STEP assembly: the lattice (trimmed to the inner offset when there is a skin) and the skin as two
-// named, coloured parts (the lattice alone when there is no skin).
+// named, coloured parts (the lattice alone when there is no skin). Cancelled leaves the file untouched.
 void write_lattice_step(const std::string& path, const FlatLattice& lattice, const LatticePartRequest& request,
-                        const StepNames& names = {});
+                        const StepNames& names = {}, Progress& progress = no_progress());
 
 }  // namespace steady

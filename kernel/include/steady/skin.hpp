@@ -4,6 +4,7 @@
 // no Boolean is needed; the inner solid (the offset body) is where the lattice goes.
 #include <TopoDS_Solid.hxx>
 
+#include "steady/progress.hpp"
 #include "steady/solid_body.hpp"
 
 namespace steady {
@@ -15,7 +16,8 @@ struct Skin {
 };
 
 // Throws InvalidInput naming "skin" for a negative or non-finite thickness, and when the body cannot hold a
-// wall that thick (the inward offset is empty, inverted, or comes closer than the thickness to the boundary).
-Skin make_skin(const SolidBody& body, double thickness);
+// wall that thick (the inward offset is empty, inverted, or comes closer than the thickness to the boundary);
+// Cancelled when the progress is cancelled (OpenCASCADE's offset stops at its next check).
+Skin make_skin(const SolidBody& body, double thickness, Progress& progress = no_progress());
 
 }  // namespace steady

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "steady/progress.hpp"
+
 namespace steady {
 
 struct StepPart {
@@ -17,9 +19,10 @@ struct StepPart {
 };
 
 // Writes the parts as components of one assembly. Throws InvalidInput naming "path" when the file cannot be
-// written, "parts" when there is nothing to write.
+// written, "parts" when there is nothing to write. Cancelled while the shapes are translated leaves the file
+// untouched (it is written only after; the writing itself runs to its end).
 void write_step_assembly(const std::string& path, const std::vector<StepPart>& parts,
-                         const std::string& assembly_name = "LatticePart");
+                         const std::string& assembly_name = "LatticePart", Progress& progress = no_progress());
 
 // Reads a STEP file back: the leaf parts with their names, colours and shapes (placed).
 std::vector<StepPart> read_step_parts(const std::string& path);

@@ -19,6 +19,7 @@
 
 #include "steady/flat_lattice.hpp"
 #include "steady/lattice.hpp"
+#include "steady/progress.hpp"
 
 namespace steady {
 
@@ -53,7 +54,10 @@ struct TrimResult {
 };
 
 // Throws InvalidInput naming "body" (not one closed valid solid; the lattice misses it), "skin" (negative,
-// too thick) or "policy" (nothing left after trimming).
-TrimResult trim_lattice(const FlatLattice& lattice, const TopoDS_Shape& body, const TrimOptions& options);
+// too thick) or "policy" (nothing left after trimming). Reports to `progress` through the skin, the classification,
+// the building of the pieces, the Booleans (cluster by cluster, and inside OpenCASCADE's own loops) and the final
+// assembly; throws Cancelled soon after it is cancelled (the inputs are never changed, so nothing needs undoing).
+TrimResult trim_lattice(const FlatLattice& lattice, const TopoDS_Shape& body, const TrimOptions& options,
+                        Progress& progress = no_progress());
 
 }  // namespace steady

@@ -4,6 +4,9 @@ Links to a SteadyLattice and to a body (any object whose Shape holds a closed so
 Body, an imported STEP part). The kernel classifies every hub against the body, keeps inside hubs whole, drops
 outside ones and cuts only the crossing hubs; with a skin, the body's wall of that thickness is united with the
 lattice trimmed to the inner offset. Editing the lattice or the body re-trims the part.
+
+Trimming shows FreeCAD's progress bar (and, when it lasts, a dialog with a Cancel button). A cancelled recompute
+keeps the previous shape and leaves the part touched (needing recompute), with a warning in the report view.
 """
 import FreeCAD
 import Part
@@ -56,11 +59,17 @@ class LatticePart:
             obj.Skin = 0.0
 
     def execute(self, obj):
+        import steadylattice
+        from latticewb import progress
         try:
-            text = part_brep(obj)
+            with progress.LongOperation("Trimming %s" % obj.Label) as report:
+                text = part_brep(obj, report)
         except ValueError as error:
             FreeCAD.Console.PrintError("%s: %s\n" % (obj.Label, error))
             raise ValueError("%s: %s" % (obj.Label, error)) from None
+        except steadylattice.Cancelled:
+            progress.keep_previous_shape(obj, "trimming")
+            return
         shape = Part.Shape()
         shape.importBrepFromString(text)
         obj.Shape = shape
@@ -97,18 +106,20 @@ def kernel_request(obj):
     return api.lattice(obj.Lattice), body_brep(obj), obj.Policy, obj.Skin.Value, obj.Dangling
 
 
-def part_brep(obj):
+def part_brep(obj, report=None):
+    """BREP text of the part. report(fraction) -> False cancels (steadylattice.Cancelled, nothing changed)."""
     lattice, body, policy, skin, dangling = kernel_request(obj)
     if skin > 0.0 and body is None:
         raise ValueError("Skin: a skin needs a Body")
-    return lattice.brep(body, policy, skin, dangling)
+    return lattice.brep(body, policy, skin, dangling, progress=report)
 
 
-def write_step_assembly(obj, path):
-    """STEP with the skin and the lattice as two named, coloured parts (the kernel's XCAF writer)."""
+def write_step_assembly(obj, path, report=None):
+    """STEP with the skin and the lattice as two named, coloured parts (the kernel's XCAF writer).
+    report(fraction) -> False cancels (steadylattice.Cancelled; the file is not written)."""
     lattice, body, policy, skin, dangling = kernel_request(obj)
     lattice.write_step(path, body, policy, skin, dangling, lattice_name=obj.Label + " lattice",
-                       skin_name=obj.Label + " skin")
+                       skin_name=obj.Label + " skin", progress=report)
 
 
 def make_lattice_part(doc, lattice, body=None, policy="clip", skin=0.0, dangling="keep", name="LatticePart"):

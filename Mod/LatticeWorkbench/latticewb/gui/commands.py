@@ -218,8 +218,12 @@ class ExportCommand:
         path, _ = QtGui.QFileDialog.getSaveFileName(FreeCADGui.getMainWindow(), "Export lattice", start, self.FILTERS)
         if not path:
             return
+        import steadylattice
         try:
             api.export(objects, path)
+        except steadylattice.Cancelled:
+            FreeCAD.Console.PrintWarning("Export cancelled: %s was not written\n" % path)
+            return
         except (ValueError, RuntimeError) as error:
             FreeCAD.Console.PrintError("Export: %s\n" % error)
             return
