@@ -1,5 +1,8 @@
 #include "steady/brep_io.hpp"
 
+#include <BRepAdaptor_Surface.hxx>
+#include <TopoDS.hxx>
+
 #include <BRepCheck.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepCheck_ListOfStatus.hxx>
@@ -39,6 +42,18 @@ TopoDS_Shape brep_from_text(const std::string& text, const std::string& field) {
   return shape;
 }
 
+// The kind of a face's surface, for error messages.
+const char* surface_name(const TopoDS_Face& face) {
+  switch (BRepAdaptor_Surface(face, Standard_False).GetType()) {
+    case GeomAbs_Plane: return "plane";
+    case GeomAbs_Cylinder: return "cylinder";
+    case GeomAbs_Cone: return "cone";
+    case GeomAbs_Sphere: return "sphere";
+    case GeomAbs_Torus: return "torus";
+    default: return "free-form surface";
+  }
+}
+
 bool is_valid(const TopoDS_Shape& shape) {
   // The parallel analyzer checks faces on all cores; the verdict is the same.
   return !shape.IsNull() && BRepCheck_Analyzer(shape, Standard_True, Standard_True).IsValid();
@@ -64,7 +79,9 @@ std::string validity_report(const TopoDS_Shape& shape, int max_lines) {
           BRepCheck::Print(*it, status);
           std::string s = status.str();
           while (!s.empty() && (s.back() == '\n' || s.back() == '\r')) s.pop_back();
-          os << kNames[type] << " #" << i << ": " << s << "\n";
+          os << kNames[type] << " #" << i;
+          if (type == TopAbs_FACE) os << " (" << surface_name(TopoDS::Face(map(i))) << ")";
+          os << ": " << s << "\n";
           ++lines;
         }
       };
