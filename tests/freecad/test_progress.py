@@ -59,7 +59,8 @@ class ProgressTest(unittest.TestCase):
             self.doc.recompute()
         finally:
             LongOperation.__call__ = original
-        self.assertIn("Invalid", obj.State)
+        self.assertIn("Touched", obj.State)  # needs a recompute, no error (no traceback for the user)
+        self.assertNotIn("Invalid", obj.State)
         self.assertEqual(len(obj.Shape.Solids), 0)  # the previous (preview) shape is kept
         self.assertAlmostEqual(other.Shape.Volume, volume)
         self.doc.recompute()  # without cancelling, it builds

@@ -65,8 +65,9 @@ def empty_shape():
     return Part.Compound([])
 
 
-def exact_solid(lattice):
-    """The lattice as one exact B-rep solid (the union of its balls and beams), built by the kernel."""
+def exact_solid(lattice, report=None):
+    """The lattice as one exact B-rep solid (the union of its balls and beams), built by the kernel.
+    report(fraction) -> False cancels (steadylattice.Cancelled)."""
     shape = Part.Shape()
-    shape.importBrepFromString(lattice.brep())
+    shape.importBrepFromString(lattice.brep(progress=report))
     return shape

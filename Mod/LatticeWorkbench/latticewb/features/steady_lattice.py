@@ -167,17 +167,18 @@ class SteadyLattice:
         obj.AppliedOrder = "".join("UVW"[a] for a in applied_order(obj))
         obj.BallCount = lattice.ball_count
         obj.BeamCount = lattice.beam_count
-        if obj.Representation == "Solid":
-            obj.Shape = lattice_shape.exact_solid(lattice)
-        elif shows_solids(obj):
+        if obj.Representation == "Solid" or shows_solids(obj):
             import steadylattice
-            from latticewb.progress import LongOperation
+            from latticewb import progress
+            exact = obj.Representation == "Solid"
             try:
-                with LongOperation("Building %s as solids" % obj.Label) as report:
-                    obj.Shape = lattice_shape.lattice_shape(lattice, report)
+                with progress.LongOperation("Building %s as %s" % (obj.Label, "one solid" if exact else "solids")) \
+                        as report:
+                    obj.Shape = (lattice_shape.exact_solid(lattice, report) if exact
+                                 else lattice_shape.lattice_shape(lattice, report))
             except steadylattice.Cancelled:
-                FreeCAD.Console.PrintWarning("%s: cancelled; the previous shape is kept\n" % obj.Label)
-                raise RuntimeError("%s: cancelled by the user" % obj.Label) from None
+                # not an error: the previous shape stays, the object shows as needing recompute
+                progress.keep_previous_shape(obj, "building")
         else:
             obj.Shape = lattice_shape.empty_shape()
 
