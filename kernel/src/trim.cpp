@@ -12,6 +12,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include <atomic>
 #include <chrono>
 #include "steady/brep_io.hpp"
 #include <cmath>
@@ -385,7 +386,7 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
 
   clock = std::chrono::steady_clock::now();
   CutEdges cuts;
-  BrepPieces band_pieces;
+  BrepPieces band_pieces, second_layout;  // the boundary hubs, and the clusters built again with the other layout
   if (has_band) {
     BrepSelection sel;
     sel.balls = band;
@@ -426,6 +427,8 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
     struct Removed {
       const CutCap* cap;
       int cluster;
+      int layout = 0;       // 0: the first layout of the spheres; 1: the other one (for clusters that failed)
+      bool active = true;   // the disk of the layout its cluster uses
       Fate fate = Fate::Present;
       int changed_by = -2;  // the cluster whose Boolean changed its fate, or -1 for the final one
     };
@@ -457,7 +460,7 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
     auto track = [&](BRepAlgoAPI_BooleanOperation& op, const TopoDS_Shape& result, int cluster) {
       const std::unordered_set<const void*> present = faces_of(result);
       for (Removed& r : removed) {
-        if ((cluster >= 0 && r.cluster != cluster) || r.fate != Fate::Present) continue;
+        if (!r.active || (cluster >= 0 && r.cluster != cluster) || r.fate != Fate::Present) continue;
         r.fate = fate_in(op, present, r.cap->face);
         if (r.fate != Fate::Present) r.changed_by = cluster;
       }
@@ -481,10 +484,10 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
           expected_present[k] = boundaries.front()->contains(frustums[removed[k].cap->beam].cut_circle().center);
     // A cluster's Common is right when its disks met their expected fate (untouched or wholly deleted) and the
     // faces it produced are valid; the other checks (the final union) follow below.
-    auto cluster_result_ok = [&](BRepAlgoAPI_BooleanOperation& op, const TopoDS_Shape& result, int c) {
+    auto cluster_result_ok = [&](BRepAlgoAPI_BooleanOperation& op, const TopoDS_Shape& result, int c, int layout) {
       const std::unordered_set<const void*> present = faces_of(result);
       for (std::size_t k = 0; k < removed.size(); ++k) {
-        if (removed[k].cluster != c) continue;
+        if (removed[k].cluster != c || removed[k].layout != layout) continue;
         const Fate fate = fate_in(op, present, removed[k].cap->face);
         if (fate != (expected_present[k] ? Fate::Present : Fate::Deleted)) return false;
       }
@@ -494,6 +497,7 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
       return is_valid(compound_of(produced));
     };
     std::vector<TopoDS_Shape> results(cluster_faces.size()), unclipped(cluster_faces.size());
+    std::vector<char> failed(cluster_faces.size(), 0);
     const std::string tool_text = tool ? brep_to_text(*tool) : std::string();
     // Each cluster's share of the Booleans' progress is its number of faces; a cancel stops the clusters not yet
     // started, and the running Booleans at their next check.
@@ -518,15 +522,67 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
       BRepAlgoAPI_Common op;
       Progress boolean(cluster, 9);
       results[c] = run_boolean(op, solid, copy, what, boolean);
-      // A failed cluster dooms the attempt: stop here rather than after every other Boolean.
-      if (options.verify_booleans && !cluster_result_ok(op, results[c], static_cast<int>(c)))
-        throw std::runtime_error("trim: the Common of boundary cluster " + std::to_string(c) + " (of " +
-                                 std::to_string(cluster_faces.size()) +
-                                 ") misclassified a disk it did not touch, or produced invalid faces");
-      track(op, results[c], static_cast<int>(c));
+      if (options.verify_booleans && !cluster_result_ok(op, results[c], static_cast<int>(c), 0))
+        failed[c] = 1;  // tried again below with the spheres laid out the other way
+      else
+        track(op, results[c], static_cast<int>(c));
       cluster.finish();
     });
     booleans.finish();
+    // OpenCASCADE's failures depend on how the spheres are parametrized (where a seam or pole sits relative to the
+    // body's surface: a sphere face with a self-intersecting wire, measured): the failed clusters are built again
+    // with the other layout (seams and poles elsewhere) and clipped again. Both layouts share the cut circles,
+    // so the rebuilt clusters glue to their neighbours as the first ones would.
+    if (std::any_of(failed.begin(), failed.end(), [](char x) { return x; })) {
+      progress.check();
+      std::unordered_map<std::int64_t, std::size_t> vertices_before;
+      for (const auto& [beam, circle] : cuts) vertices_before[beam] = circle.vertices.size();
+      BrepSelection other;
+      other.balls = band;
+      other.beams = band_beams;
+      other.split = split;
+      other.seams = seams == SeamPreference::FewestCrossings ? SeamPreference::MostCrossings
+                                                             : SeamPreference::FewestCrossings;
+      second_layout = build_brep_pieces(f, other, cuts);
+      for (const auto& [beam, count] : vertices_before)
+        if (cuts.at(beam).vertices.size() != count)
+          throw std::runtime_error("trim: the second layout of the boundary hubs changed a shared cut circle");
+      std::vector<std::vector<TopoDS_Face>> other_faces(cluster_faces.size());
+      std::unordered_map<const void*, int> cluster_of_face;
+      for (std::size_t k = 0; k < second_layout.faces.size(); ++k) {
+        const int c = cluster_index.at(find(second_layout.face_owner[k]));
+        other_faces[c].push_back(second_layout.faces[k]);
+        cluster_of_face.emplace(second_layout.faces[k].TShape().get(), c);
+      }
+      std::unordered_map<std::int64_t, char> present_by_beam;
+      for (std::size_t k = 0; k < removed.size(); ++k) present_by_beam[removed[k].cap->beam] = expected_present[k];
+      for (const CutCap& cap : second_layout.caps) {
+        if (!open_cuts[cap.beam] && !split[cap.beam]) continue;
+        const int c = cluster_of_face.at(cap.face.TShape().get());
+        removed_index.emplace(cap.face.TShape().get(), removed.size());
+        removed.push_back({&cap, c, 1, static_cast<bool>(failed[c])});
+        expected_present.push_back(present_by_beam.at(cap.beam));
+      }
+      for (std::size_t k = 0; k < removed.size(); ++k)
+        if (removed[k].layout == 0 && failed[removed[k].cluster]) removed[k].active = false;
+      std::atomic<std::int64_t> relaid{0};
+      tbb::parallel_for(std::size_t(0), cluster_faces.size(), [&](std::size_t c) {
+        if (!failed[c]) return;
+        progress.check();
+        const TopoDS_Shape solid = solids_from_faces(other_faces[c]);
+        BRepAlgoAPI_Common op;
+        results[c] = run_boolean(op, solid, brep_from_text(tool_text, "body"), what, no_progress());
+        if (!cluster_result_ok(op, results[c], static_cast<int>(c), 1))
+          throw std::runtime_error("trim: the Common of boundary cluster " + std::to_string(c) + " (of " +
+                                   std::to_string(cluster_faces.size()) +
+                                   ") misclassified a disk it did not touch, or produced invalid faces, with "
+                                   "both layouts of its spheres");
+        unclipped[c] = solid;
+        track(op, results[c], static_cast<int>(c));
+        ++relaid;
+      });
+      stats.relaid_clusters = relaid;
+    }
     // Checks one attempt: every interface disk untouched, the two disks of a split beam with one fate, the
     // Boolean's faces valid (OpenCASCADE reports success on some results it got wrong: check what it produced,
     // only that; the rest was built exactly and the solids are assembled again below). Returns the faces to keep,
@@ -534,6 +590,7 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
     auto collect = [&](const TopoDS_Shape& merged, bool pores, std::vector<TopoDS_Face>& kept) -> std::string {
       std::unordered_map<std::int64_t, int> split_present;
       for (const Removed& r : removed) {
+        if (!r.active) continue;
         if (r.fate == Fate::Modified || (open_cuts[r.cap->beam] && r.fate != Fate::Present))
           return "the disk closing beam " + std::to_string(r.cap->beam) + " at its cut (toward " +
                  (split[r.cap->beam] ? "another boundary hub" : "an interior hub") + ") was " +

@@ -42,7 +42,8 @@ struct TrimStats {
   std::int64_t exact_distance_tests = 0;  // hubs the triangulation could not decide
   std::int64_t removed_beams = 0;         // dangling beams removed
   std::int64_t band_clusters = 0;         // independent Booleans the crossing hubs were split into
-  bool relaid_out = false;                // the first attempt failed; the boundary spheres were laid out again
+  std::int64_t relaid_clusters = 0;       // clusters clipped again with their spheres laid out the other way
+  bool relaid_out = false;                // the first attempt failed as a whole; everything was laid out again
   std::int64_t faces = 0;
   double classify_seconds = 0.0, build_seconds = 0.0, boolean_seconds = 0.0, assemble_seconds = 0.0;
 };
