@@ -44,20 +44,6 @@ py::dict properties_dict(const steady::LatticeProperties& p) {
 
 py::tuple node_tuple(const steady::NodeId& id) { return py::make_tuple(id.i, id.j, id.k, id.n); }
 
-// Runs `work(progress)` without the GIL, reporting to the Python callable `report` (or None).
-template <class Work>
-auto with_progress(const py::object& report, Work&& work) {
-  PythonProgress python(report);
-  steady::Progress progress(python.callback());
-  try {
-    py::gil_scoped_release release;
-    return work(progress);
-  } catch (const steady::Cancelled&) {
-    python.rethrow_callback_error();
-    throw;
-  }
-}
-
 steady::RadiusScaleOptions scale_options(bool check_clean, double tolerance) {
   steady::RadiusScaleOptions o;
   o.check_clean = check_clean;
@@ -89,7 +75,7 @@ void bind_properties(py::module_& m) {
             if (!(tolerance > 0.0 && tolerance < 1.0)) value_error("tolerance", "must be in (0, 1)");
             o.hub.tolerance = tolerance;
             return properties_dict(
-                with_progress(progress, [&](steady::Progress& p) { return steady::lattice_properties(lat, o, p); }));
+                run_with_progress(progress, [&](steady::Progress& p) { return steady::lattice_properties(lat, o, p); }));
           },
           py::arg("check_clean") = true, py::arg("tolerance") = 1e-12, py::arg("progress") = py::none(),
           py::arg("union_overlaps") = true,
@@ -115,7 +101,7 @@ the sum over hubs. Multiply volume and inertia by a density for mass properties.
       .def(
           "hub_overlap_report",
           [](const Lattice& lat, std::size_t max_reports, const py::object& progress) {
-            const steady::HubOverlapReport r = with_progress(
+            const steady::HubOverlapReport r = run_with_progress(
                 progress, [&](steady::Progress& p) { return steady::check_hub_overlaps(lat, max_reports, p); });
             py::list overlaps;
             for (const steady::HubOverlap& o : r.overlaps)

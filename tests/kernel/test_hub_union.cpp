@@ -16,13 +16,6 @@
 namespace steady {
 namespace {
 
-double max_abs(const Mat3& m) {
-  double v = 0.0;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) v = std::max(v, std::abs(m[i][j]));
-  return v;
-}
-
 std::optional<TopoDS_Shape> occ_lattice(const Lattice& lat) {
   std::vector<TopoDS_Shape> pieces;
   lat.for_each_ball([&](std::int64_t, const NodeId&, const Ball& b) {
@@ -46,7 +39,7 @@ void expect_matches_occ(const Lattice& lat, const std::string& what) {
   EXPECT_NEAR(p.volume, occ.volume, 1e-6 * occ.volume) << what;
   EXPECT_NEAR(p.area, occ.area, 1e-6 * occ.area) << what;
   EXPECT_LT(glm::length(p.centroid - occ.centroid), 1e-6 * size) << what;
-  EXPECT_LT(max_abs(p.inertia - occ.inertia), 1e-6 * max_abs(occ.inertia)) << what;
+  EXPECT_LT(test::max_abs(p.inertia - occ.inertia), 1e-6 * test::max_abs(occ.inertia)) << what;
   // The plain sum over hubs is wrong here: the comparison above can fail.
   LatticePropertiesOptions sums;
   sums.check_clean = false;
@@ -56,7 +49,7 @@ void expect_matches_occ(const Lattice& lat, const std::string& what) {
               "%.1e, inertia %.1e relative (sum over hubs alone: volume off by %.1e)\n",
               what.c_str(), (long long)p.overlap_count, (long long)p.union_hubs, (long long)p.union_clusters,
               std::abs(p.volume - occ.volume) / occ.volume, std::abs(p.area - occ.area) / occ.area,
-              max_abs(p.inertia - occ.inertia) / max_abs(occ.inertia), std::abs(sum_volume - occ.volume) / occ.volume);
+              test::max_abs(p.inertia - occ.inertia) / test::max_abs(occ.inertia), std::abs(sum_volume - occ.volume) / occ.volume);
 }
 
 TEST(HubUnion, OverlappingBallsMatchBRepGProp) {

@@ -13,13 +13,6 @@
 namespace steady {
 namespace {
 
-double max_abs(const Mat3& m) {
-  double v = 0.0;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) v = std::max(v, std::abs(m[i][j]));
-  return v;
-}
-
 TEST(PropertiesOcc, HubsMatchBRepGProp) {
   std::mt19937_64 rng(41);
   int compared = 0, overlapping = 0;
@@ -38,11 +31,11 @@ TEST(PropertiesOcc, HubsMatchBRepGProp) {
     const double d = test::hub_reach(h);
     worst[0] = std::max(worst[0], std::abs(world.volume - occ.volume) / occ.volume);
     worst[1] = std::max(worst[1], std::abs(world.area + cut - occ.area) / occ.area);
-    worst[2] = std::max(worst[2], max_abs(central_inertia(world) - occ.inertia) / max_abs(occ.inertia));
+    worst[2] = std::max(worst[2], test::max_abs(central_inertia(world) - occ.inertia) / test::max_abs(occ.inertia));
     EXPECT_NEAR(world.volume, occ.volume, 1e-6 * occ.volume) << "trial " << trial;
     EXPECT_NEAR(world.area + cut, occ.area, 1e-6 * occ.area) << "trial " << trial;
     EXPECT_LT(glm::length(centroid(world) - occ.centroid), 1e-6 * d) << "trial " << trial;
-    EXPECT_LT(max_abs(central_inertia(world) - occ.inertia), 1e-6 * occ.volume * d * d) << "trial " << trial;
+    EXPECT_LT(test::max_abs(central_inertia(world) - occ.inertia), 1e-6 * occ.volume * d * d) << "trial " << trial;
   }
   EXPECT_GE(compared, 10);
   EXPECT_GE(overlapping, 3);
@@ -91,12 +84,12 @@ TEST(PropertiesOcc, SmallLatticesMatchBRepGProp) {
     EXPECT_NEAR(p.volume, occ.volume, 1e-6 * occ.volume);
     EXPECT_NEAR(p.area, occ.area, 1e-6 * occ.area);
     EXPECT_LT(glm::length(p.centroid - occ.centroid), 1e-6 * size);
-    EXPECT_LT(max_abs(p.inertia - occ.inertia), 1e-6 * max_abs(occ.inertia));
+    EXPECT_LT(test::max_abs(p.inertia - occ.inertia), 1e-6 * test::max_abs(occ.inertia));
     std::printf("[ report ] lattice %lldx%lldx%lld (%lld balls, %lld beams) vs BRepGProp: volume %.2e, area %.2e, "
                 "inertia %.2e relative\n",
                 (long long)cs.counts.u, (long long)cs.counts.v, (long long)cs.counts.w, (long long)lat.ball_count(),
                 (long long)lat.beam_count(), std::abs(p.volume - occ.volume) / occ.volume,
-                std::abs(p.area - occ.area) / occ.area, max_abs(p.inertia - occ.inertia) / max_abs(occ.inertia));
+                std::abs(p.area - occ.area) / occ.area, test::max_abs(p.inertia - occ.inertia) / test::max_abs(occ.inertia));
   }
   EXPECT_EQ(compared, 2);
 }
