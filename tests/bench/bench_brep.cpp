@@ -198,7 +198,7 @@ int child_scale(Counts c, bool check, double skin, double tilt) {
   std::map<std::string, double> out = {
       {"seconds", t1 - t0}, {"beams", double(f.beam_count())}, {"faces", double(face_count(r.part))},
       {"classify", r.stats.classify_seconds}, {"build", r.stats.build_seconds}, {"boolean", r.stats.boolean_seconds},
-      {"crossing", double(r.stats.crossing_hubs)}, {"relaid", double(r.stats.relaid_out)}, {"relaid_clusters", double(r.stats.relaid_clusters)},
+      {"crossing", double(r.stats.crossing_hubs)}, {"relaid", double(r.stats.relaid_out)}, {"relaid_clusters", double(r.stats.relaid_clusters)}, {"fuzzy_clusters", double(r.stats.fuzzy_clusters)},
       {"clusters", double(r.stats.band_clusters)}, {"peak_mb", double(peak_rss_mb())}};
   if (check) {
     const double t2 = now();
