@@ -32,6 +32,7 @@
 
 #include "sphere_pcurve.hpp"
 #include "steady/beam_frustum.hpp"
+#include "steady/circle_frames.hpp"
 #include "steady/clean_check.hpp"
 #include "steady/errors.hpp"
 #include "steady/hub_catalog.hpp"
@@ -54,11 +55,6 @@ constexpr std::uint64_t kBytesPerFace = 8192;
 // Collars of crowded hubs are sought up to this many ball radii from the center (beyond, the beam's cut decides).
 constexpr double kMaxCollarPosition = 50.0;
 
-Vec3 any_perpendicular_to(const Vec3& d) {
-  const Vec3 a = std::abs(d.x) < 0.6 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
-  return glm::normalize(glm::cross(d, a));
-}
-
 gp_Pnt pnt(const Vec3& v) { return gp_Pnt(v.x, v.y, v.z); }
 gp_Dir dir(const Vec3& v) { return gp_Dir(v.x, v.y, v.z); }
 
@@ -66,11 +62,6 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-double wrap_into(double t, double start) {
-  double r = std::fmod(t - start, kTwoPi);
-  if (r < 0.0) r += kTwoPi;
-  return start + r;
-}
 
 // A circle around a beam where faces meet: an exit circle on a clean hub's sphere, a core's collar, a cut, or a
 // joint. Its edges run between its vertices.
@@ -602,7 +593,7 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
       } else {
         const Circle cc = fr.cut_circle();
         w.cut.circle = cc;
-        w.cut.e1 = any_perpendicular_to(cc.normal);
+        w.cut.e1 = any_perpendicular(cc.normal);
         w.cut.e2 = glm::cross(cc.normal, w.cut.e1);
         w.cut_is_new = true;
       }

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "steady/circle_frames.hpp"
+
 namespace steady {
 
 namespace {
@@ -13,11 +15,6 @@ namespace {
 constexpr double kFrameSine = 1e-3;
 // Canonical values are hashed on this grid; matches are then confirmed to kHubMatchTolerance.
 constexpr double kHashGrid = 1e-7;
-
-Vec3 any_perpendicular(const Vec3& d) {
-  const Vec3 a = std::abs(d.x) < 0.6 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
-  return glm::normalize(glm::cross(d, a));
-}
 
 std::uint64_t hash_caps(const std::vector<SphereCap>& caps, int kind, const std::vector<double>& extras) {
   std::uint64_t h = 1469598103934665603ull ^ (caps.size() * 4 + static_cast<std::uint64_t>(kind));

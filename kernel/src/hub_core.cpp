@@ -46,6 +46,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "steady/circle_frames.hpp"
 #include "steady/convex_distance.hpp"
 #include "steady/errors.hpp"
 #include "steady/sphere_layout.hpp"
@@ -80,16 +81,6 @@ gp_Dir dir(const Vec3& v) { return gp_Dir(v.x, v.y, v.z); }
 Vec3 vec(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
 Vec3 vec(const gp_Vec& p) { return {p.X(), p.Y(), p.Z()}; }
 
-Vec3 any_perpendicular(const Vec3& d) {
-  const Vec3 a = std::abs(d.x) < 0.6 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
-  return glm::normalize(glm::cross(d, a));
-}
-
-double wrap_into(double t, double start) {
-  double r = std::fmod(t - start, kTwoPi);
-  if (r < 0.0) r += kTwoPi;
-  return start + r;
-}
 
 [[noreturn]] void unsupported(const std::string& why) { fail_input("hub", why); }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <tuple>
 
+#include "steady/circle_frames.hpp"
 #include "steady/errors.hpp"
 
 namespace steady {
@@ -21,16 +22,6 @@ constexpr double kWrapSlack = 1e-3;
 
 double angle_between(const Vec3& a, const Vec3& b) { return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b)); }
 
-Vec3 any_perpendicular(const Vec3& d) {
-  const Vec3 a = std::abs(d.x) < 0.6 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
-  return glm::normalize(glm::cross(d, a));
-}
-
-double wrap_into(double t, double start) {
-  double r = std::fmod(t - start, kTwoPi);
-  if (r < 0.0) r += kTwoPi;
-  return start + r;
-}
 
 struct Frame {
   Vec3 z, x, y;
