@@ -11,6 +11,7 @@ Invert keeps the complement. Nothing is stored per element: the kernel evaluates
 import FreeCAD
 
 from latticewb.features import lattice_shape
+from latticewb.proxies import StatelessProxy, add_missing_properties
 
 KINDS = ["stencil", "lattice-in-lattice", "gyroid", "inside body"]
 GYROID_MODES = ["sheet", "solid"]
@@ -33,17 +34,14 @@ _PROPERTIES = [
 ]
 
 
-class LatticeFilter:
+class LatticeFilter(StatelessProxy):
     def __init__(self, obj):
         obj.Proxy = self
         self.ensure_properties(obj)
 
     @staticmethod
     def ensure_properties(obj):
-        fresh = {p[1] for p in _PROPERTIES if p[1] not in obj.PropertiesList}
-        for kind, name, group, tip in _PROPERTIES:
-            if name in fresh:
-                obj.addProperty(kind, name, group, tip)
+        fresh = add_missing_properties(obj, _PROPERTIES)
         if "Kind" in fresh:
             obj.Kind = KINDS
             obj.Kind = "stencil"
@@ -88,15 +86,6 @@ class LatticeFilter:
             except ValueError:
                 return None
         return view
-
-    def dumps(self):
-        return None
-
-    def loads(self, state):
-        return None
-
-    __getstate__ = dumps
-    __setstate__ = loads
 
 
 def is_lattice_source(obj):

@@ -11,6 +11,8 @@ keeps the previous shape and leaves the part touched (needing recompute), with a
 import FreeCAD
 import Part
 
+from latticewb.proxies import StatelessProxy, add_missing_properties
+
 POLICIES = ["clip", "whole"]
 DANGLING = ["keep", "remove"]
 
@@ -28,17 +30,14 @@ _PROPERTIES = [
 ]
 
 
-class LatticePart:
+class LatticePart(StatelessProxy):
     def __init__(self, obj):
         obj.Proxy = self
         self.ensure_properties(obj)
 
     @staticmethod
     def ensure_properties(obj):
-        fresh = {p[1] for p in _PROPERTIES if p[1] not in obj.PropertiesList}
-        for kind, name, group, tip in _PROPERTIES:
-            if name in fresh:
-                obj.addProperty(kind, name, group, tip)
+        fresh = add_missing_properties(obj, _PROPERTIES)
         if "Policy" in fresh:
             obj.Policy = POLICIES
             obj.Policy = "clip"
@@ -75,15 +74,6 @@ class LatticePart:
         obj.Shape = shape
         obj.Volume = shape.Volume
         obj.FaceCount = len(shape.Faces)
-
-    def dumps(self):
-        return None
-
-    def loads(self, state):
-        return None
-
-    __getstate__ = dumps
-    __setstate__ = loads
 
 
 def body_brep(obj):

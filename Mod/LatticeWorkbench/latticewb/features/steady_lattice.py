@@ -13,6 +13,7 @@ import FreeCAD
 
 from latticewb import presets
 from latticewb.features import grading, lattice_shape, mass_properties, property_checks
+from latticewb.proxies import StatelessProxy, add_missing_properties
 
 CUSTOM = "custom"
 LAYOUTS = ["grading", "steps", "frames"]
@@ -89,7 +90,7 @@ _MAX_CELLS = 1000000
 _SCALE_RANGE = (1e-3, 1e3)  # a scale of more than 1000x per cell is a typo, not a design
 
 
-class SteadyLattice:
+class SteadyLattice(StatelessProxy):
     """Proxy of a SteadyLattice document object."""
 
     def __init__(self, obj):
@@ -99,10 +100,7 @@ class SteadyLattice:
     @staticmethod
     def ensure_properties(obj):
         """Adds missing properties with their defaults (new objects, and documents from older versions)."""
-        fresh = [p for p in _PROPERTIES if p[1] not in obj.PropertiesList]
-        for kind, name, group, tip in fresh:
-            obj.addProperty(kind, name, group, tip)
-        names = {p[1] for p in fresh}
+        names = add_missing_properties(obj, _PROPERTIES)
 
         def default(name, value):
             if name in names:
@@ -192,16 +190,6 @@ class SteadyLattice:
             except ValueError:
                 return None
         return lattice, None, None
-
-    def dumps(self):
-        return None  # everything lives in the properties
-
-    def loads(self, state):
-        return None
-
-    # FreeCAD <= 0.21 calls these instead of dumps/loads
-    __getstate__ = dumps
-    __setstate__ = loads
 
 
 def shows_solids(obj):

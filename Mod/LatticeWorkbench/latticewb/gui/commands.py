@@ -8,6 +8,22 @@ import FreeCADGui
 from latticewb import resources
 
 
+def _create(doc, transaction, make):
+    """Runs make() and a recompute as one undo step (nothing stays behind when it raises), then selects the new
+    object."""
+    doc.openTransaction(transaction)
+    try:
+        obj = make()
+        doc.recompute()
+    except Exception:
+        doc.abortTransaction()
+        raise
+    doc.commitTransaction()
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(obj)
+    return obj
+
+
 def _selected(predicate=None):
     objects = FreeCADGui.Selection.getSelection()
     return [o for o in objects if predicate is None or predicate(o)]
@@ -64,16 +80,7 @@ class LatticePartCommand:
             FreeCAD.Console.PrintError("Lattice part: select one steady lattice and at most one solid body\n")
             return
         doc = FreeCAD.ActiveDocument
-        doc.openTransaction("Lattice part")
-        try:
-            part = api.make_part(doc, lattices[0], bodies[0] if bodies else None)
-            doc.recompute()
-        except Exception:
-            doc.abortTransaction()
-            raise
-        doc.commitTransaction()
-        FreeCADGui.Selection.clearSelection()
-        FreeCADGui.Selection.addSelection(part)
+        _create(doc, "Lattice part", lambda: api.make_part(doc, lattices[0], bodies[0] if bodies else None))
 
 
 class FilterCommand:
@@ -104,21 +111,15 @@ class FilterCommand:
             return
         second = selection[1] if len(selection) > 1 else None
         doc = FreeCAD.ActiveDocument
-        doc.openTransaction("Lattice filter")
-        try:
+
+        def make():
             if second is not None and is_lattice_source(second):
-                obj = api.make_filter(doc, source, "lattice-in-lattice", coarse=second)
-            elif second is not None and hasattr(second, "Shape") and second.Shape.Solids:
-                obj = api.make_filter(doc, source, "inside body", body=second)
-            else:
-                obj = api.make_filter(doc, source, "stencil")
-            doc.recompute()
-        except Exception:
-            doc.abortTransaction()
-            raise
-        doc.commitTransaction()
-        FreeCADGui.Selection.clearSelection()
-        FreeCADGui.Selection.addSelection(obj)
+                return api.make_filter(doc, source, "lattice-in-lattice", coarse=second)
+            if second is not None and hasattr(second, "Shape") and second.Shape.Solids:
+                return api.make_filter(doc, source, "inside body", body=second)
+            return api.make_filter(doc, source, "stencil")
+
+        _create(doc, "Lattice filter", make)
 
 
 class PropertiesCommand:

@@ -3,9 +3,10 @@ import FreeCAD
 import FreeCADGui
 
 from latticewb import resources
+from latticewb.proxies import StatelessProxy
 
 
-class ViewProviderLatticePreview:
+class ViewProviderLatticePreview(StatelessProxy):
     """Draws a lattice feature: FreeCAD's own shape display when its Shape holds solids, the scalable preview
     otherwise. The feature's proxy gives the preview's data through preview_data(obj)."""
 
@@ -36,15 +37,6 @@ class ViewProviderLatticePreview:
         if prop == "Visibility" and hasattr(self, "preview"):
             self.preview.show(vobj.Visibility and not vobj.Object.Shape.Solids)
 
-    def dumps(self):
-        return None
-
-    def loads(self, state):
-        return None
-
-    __getstate__ = dumps
-    __setstate__ = loads
-
 
 class ViewProviderSteadyLattice(ViewProviderLatticePreview):
     def getIcon(self):
@@ -65,8 +57,24 @@ class ViewProviderSteadyLattice(ViewProviderLatticePreview):
         return True
 
 
-class ViewProviderLatticePart:
-    """A LatticePart shows its lattice and body as children in the tree (hidden, like a Boolean's inputs)."""
+class InputsAsChildren:
+    """Shows the feature's input links (the names in `inputs`) as its children in the tree, hidden like a Boolean's
+    inputs; deleting the feature shows them again."""
+    inputs = ()
+
+    def claimChildren(self):
+        return [o for o in (getattr(self.Object, name) for name in self.inputs) if o is not None]
+
+    def onDelete(self, vobj, subelements):
+        for child in self.claimChildren():
+            if child.ViewObject:
+                child.ViewObject.Visibility = True
+        return True
+
+
+class ViewProviderLatticePart(InputsAsChildren, StatelessProxy):
+    """A LatticePart shows its lattice and body as children."""
+    inputs = ("Lattice", "Body")
 
     def __init__(self, vobj):
         vobj.Proxy = self
@@ -74,39 +82,12 @@ class ViewProviderLatticePart:
     def attach(self, vobj):
         self.Object = vobj.Object
 
-    def claimChildren(self):
-        obj = self.Object
-        return [o for o in (obj.Lattice, obj.Body) if o is not None]
-
-    def onDelete(self, vobj, subelements):
-        for child in self.claimChildren():
-            if child.ViewObject:
-                child.ViewObject.Visibility = True
-        return True
-
     def getIcon(self):
         return resources.icon("LatticePart")
 
-    def dumps(self):
-        return None
 
-    def loads(self, state):
-        return None
-
-    __getstate__ = dumps
-    __setstate__ = loads
-
-
-class ViewProviderLatticeFilter(ViewProviderLatticePreview):
-    def claimChildren(self):
-        obj = self.Object
-        return [o for o in (obj.Source, obj.Coarse) if o is not None]
-
-    def onDelete(self, vobj, subelements):
-        for child in self.claimChildren():
-            if child.ViewObject:
-                child.ViewObject.Visibility = True
-        return True
+class ViewProviderLatticeFilter(InputsAsChildren, ViewProviderLatticePreview):
+    inputs = ("Source", "Coarse")
 
     def getIcon(self):
         return resources.icon("LatticeFilter")
