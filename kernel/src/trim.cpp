@@ -606,9 +606,10 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
     }
     // Checks one attempt: every interface disk untouched, the two disks of a split beam with one fate, the
     // Boolean's faces valid (OpenCASCADE reports success on some results it got wrong: check what it produced,
-    // only that; the rest was built exactly and the solids are assembled again below). Returns the faces to keep,
-    // or an error message.
-    auto collect = [&](const TopoDS_Shape& merged, bool pores, std::vector<TopoDS_Face>& kept) -> std::string {
+    // only that, and not again when `faces_checked` says the clusters' checks already did; the rest was built
+    // exactly and the solids are assembled again below). Returns the faces to keep, or an error message.
+    auto collect = [&](const TopoDS_Shape& merged, bool pores, std::vector<TopoDS_Face>& kept,
+                       bool faces_checked = false) -> std::string {
       std::unordered_map<std::int64_t, int> split_present;
       for (const Removed& r : removed) {
         if (!r.active) continue;
@@ -627,7 +628,7 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
       for (TopExp_Explorer x(merged, TopAbs_FACE); x.More(); x.Next())
         if (!removed_index.count(x.Current().TShape().get()))
           kept.push_back(TopoDS::Face(pores ? x.Current().Reversed() : x.Current()));
-      if (options.verify_booleans) {
+      if (options.verify_booleans && !faces_checked) {
         union_progress.check();
         const TopoDS_Shape produced = compound_of(std::vector<TopoDS_Shape>(kept.begin(), kept.end()));
         if (!is_valid(produced)) return "its Boolean produced invalid faces (" + validity_report(produced, 2) + ")";
@@ -671,7 +672,8 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
       // Whole: hubs are never cut, so they cross the inner boundary: through the pores.
       error = through_pores(kept);
     } else {
-      error = collect(compound_of(results), false, kept);
+      // The clipped clusters' faces were each checked right after their Common (cluster_result_ok).
+      error = collect(compound_of(results), false, kept, tool != nullptr);
     }
     if (!error.empty()) throw std::runtime_error("trim: " + error + "; the pieces cannot be glued");
     union_progress.finish();
