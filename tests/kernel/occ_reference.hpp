@@ -18,18 +18,12 @@
 #include <vector>
 
 #include "steady/hub_properties.hpp"
+#include "test_support.hpp"
 
 namespace steady::test {
 
 inline gp_Pnt occ_point(const Vec3& p) { return gp_Pnt(p.x, p.y, p.z); }
 
-// The largest absolute entry of a matrix (relative comparisons of inertia tensors).
-inline double max_abs(const Mat3& m) {
-  double v = 0.0;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) v = std::max(v, std::abs(m[i][j]));
-  return v;
-}
 
 // The stump of a beam from the node at `center` (explicit radii: its start disk lies strictly inside the
 // node ball, so the fuse meets only transversal intersections): the frustum from the near tangent circle

@@ -7,6 +7,7 @@
 
 #include "hub_test_shapes.hpp"
 #include "steady/errors.hpp"
+#include "test_support.hpp"
 #include "steady/hub_properties.hpp"
 
 namespace steady {
@@ -14,19 +15,12 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-double max_abs(const Mat3& m) {
-  double v = 0.0;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) v = std::max(v, std::abs(m[i][j]));
-  return v;
-}
-
 // Largest difference of two moment sets relative to the first's size (volume, R*volume, R^2*volume, area).
 double relative_difference(const MassMoments& a, const MassMoments& b, double length) {
   const double v = std::abs(a.volume);
   double d = std::abs(a.volume - b.volume) / v;
   d = std::max(d, glm::length(a.first - b.first) / (v * length));
-  d = std::max(d, max_abs(a.second - b.second) / (v * length * length));
+  d = std::max(d, test::max_abs(a.second - b.second) / (v * length * length));
   d = std::max(d, std::abs(a.area - b.area) / std::abs(a.area));
   return d;
 }
@@ -168,7 +162,7 @@ TEST(HubProperties, MatchMonteCarloInBothBeamModels) {
     EXPECT_NEAR(mc.moments.volume, p.moments.volume, 5 * mc.sigma_volume) << "trial " << trial;
     // first and second moments: the same relative size of error, measured against the reach
     EXPECT_LT(glm::length(mc.moments.first - p.moments.first), 6 * mc.sigma_volume * d) << "trial " << trial;
-    EXPECT_LT(max_abs(mc.moments.second - p.moments.second), 6 * mc.sigma_volume * d * d) << "trial " << trial;
+    EXPECT_LT(test::max_abs(mc.moments.second - p.moments.second), 6 * mc.sigma_volume * d * d) << "trial " << trial;
   }
 }
 

@@ -9,6 +9,7 @@
 
 #include "lattice_test_shapes.hpp"
 #include "steady/errors.hpp"
+#include "test_support.hpp"
 #include "steady/similar_copies.hpp"
 #include "steady/lattice_properties.hpp"
 #include "steady/similar_copies.hpp"
@@ -18,20 +19,13 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-double max_abs(const Mat3& m) {
-  double v = 0.0;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) v = std::max(v, std::abs(m[i][j]));
-  return v;
-}
-
 // Largest relative difference of the four properties (centroid relative to the lattice's size).
 double property_difference(const LatticeProperties& a, const LatticeProperties& b) {
   const double size = std::sqrt(std::max(1e-300, a.inertia[0][0] + a.inertia[1][1] + a.inertia[2][2]) / a.volume);
   double d = std::abs(a.volume - b.volume) / a.volume;
   d = std::max(d, std::abs(a.area - b.area) / a.area);
   d = std::max(d, glm::length(a.centroid - b.centroid) / size);
-  d = std::max(d, max_abs(a.inertia - b.inertia) / max_abs(a.inertia));
+  d = std::max(d, test::max_abs(a.inertia - b.inertia) / test::max_abs(a.inertia));
   return d;
 }
 
@@ -167,7 +161,7 @@ TEST(LatticeProperties, DoublingIsStableWhereTheFixedPointRunsAway) {
   const MassMoments fast = sum_of_copies(W, Vec3(0.0), ball, 1000);
   EXPECT_NEAR(fast.volume, plain.volume, 1e-13 * plain.volume);
   EXPECT_LT(glm::length(centroid(fast) - centroid(plain)), 1e-10);
-  EXPECT_LT(max_abs(central_inertia(fast) - central_inertia(plain)), 1e-9 * max_abs(central_inertia(plain)));
+  EXPECT_LT(test::max_abs(central_inertia(fast) - central_inertia(plain)), 1e-9 * test::max_abs(central_inertia(plain)));
 }
 
 TEST(LatticeProperties, ReportsTheLargestDifference) {

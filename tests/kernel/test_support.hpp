@@ -1,6 +1,6 @@
 #pragma once
-// Shared helpers of the kernel tests: seeded random similarities of every kind, and the largest
-// round-trip error seen (printed at the end of a run for the issue notes).
+// Shared helpers of the kernel tests: the largest entry of a matrix, seeded random similarities of every kind,
+// and the largest round-trip error seen (printed at the end of a run for the issue notes).
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -8,6 +8,14 @@
 #include "steady/similarity.hpp"
 
 namespace steady::test {
+
+// The largest absolute entry of a matrix (relative comparisons of inertia tensors).
+inline double max_abs(const Mat3& m) {
+  double v = 0.0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) v = std::max(v, std::abs(m[i][j]));
+  return v;
+}
 
 inline Vec3 random_vec(std::mt19937_64& rng, double scale = 1.0) {
   std::uniform_real_distribution<double> u(-scale, scale);
