@@ -105,6 +105,13 @@ struct BeamWork {
   std::vector<TopoDS_Face> cones;  // per segment
   std::vector<int> cone_side;      // per segment: 0 when on node a's side of the cut, 1 on node b's
   TopoDS_Face cap[2];              // disks closing the a-side / b-side piece at the cut
+
+  // The ring a plan names: 0 and 1 the ends at balls a and b, 2 the cut, 3 and up the joints.
+  Ring& ring(int id) {
+    if (id < 2) return end[id];
+    if (id == 2) return cut;
+    return joints[id - 3];
+  }
 };
 
 struct HubWork {
@@ -599,12 +606,6 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
       }
     }
     const Vec3 axis = fr.cone.axis;
-    auto ring_ptr = [&](int id) -> Ring* {
-      if (id == 0) return &w.end[0];
-      if (id == 1) return &w.end[1];
-      if (id == 2) return &w.cut;
-      return &w.joints[id - 3];
-    };
     switch (w.kind) {
       case BeamKind::Whole: w.plan.rings = {0, 1}; break;
       case BeamKind::HalfA: w.plan.rings = {0, 2}; break;
@@ -616,8 +617,8 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
     std::vector<int> planned;
     std::vector<Vec3> seams;
     for (std::size_t k = 0; k + 1 < rings.size(); ++k) {
-      Ring& p = *ring_ptr(rings[k]);
-      Ring& q = *ring_ptr(rings[k + 1]);
+      Ring& p = w.ring(rings[k]);
+      Ring& q = w.ring(rings[k + 1]);
       if (planned.empty()) planned.push_back(rings[k]);
       if (p.fixed && q.fixed) {
         // A common vertex, or a joint between them.
@@ -669,12 +670,6 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
     const BeamFrustum& fr = frustums[e];
     const double to_v = 1.0 / fr.cone.cos_phi;
     const Vec3 axis = fr.cone.axis;
-    auto ring_ptr = [&](int id) -> Ring* {
-      if (id == 0) return &w.end[0];
-      if (id == 1) return &w.end[1];
-      if (id == 2) return &w.cut;
-      return &w.joints[id - 3];
-    };
     // Cone position v of each ring (the cone is anchored at the exit circle of node a).
     auto v_of = [&](int id) {
       if (id == 0) return (w.end[0].axial - fr.exit_a) * to_v;
@@ -693,7 +688,7 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
     for (std::size_t k = 0; k < w.plan.rings.size(); ++k) {
       const int id = w.plan.rings[k];
       if (!(id >= 3 || (id == 2 && w.cut_is_new))) continue;
-      Ring& r = *ring_ptr(id);
+      Ring& r = w.ring(id);
       const double x = fr.exit_a + v[k] * fr.cone.cos_phi;
       r.circle = {fr.cone.a + x * axis, axis, fr.cone.radius_at(x)};
       if (id >= 3) {
@@ -713,7 +708,7 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
       if (w.plan.rings[k] == 2) cut_v = v[k];
     for (std::size_t k = 0; k + 1 < w.plan.rings.size(); ++k) {
       auto station = [&](std::size_t at) {
-        const Ring& r = *ring_ptr(w.plan.rings[at]);
+        const Ring& r = w.ring(w.plan.rings[at]);
         Station st;
         st.edges = &r.edges;
         st.params = &r.params;
