@@ -7,6 +7,7 @@
 #include <BRepBndLib.hxx>
 #include <Bnd_Box.hxx>
 #include <BRep_Builder.hxx>
+#include <Standard_Failure.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopTools_ListOfShape.hxx>
 #include <TopoDS.hxx>
@@ -18,6 +19,8 @@
 #include <chrono>
 #include "steady/brep_io.hpp"
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
 #include <numeric>
 #include <optional>
 #include <sstream>
@@ -28,6 +31,7 @@
 #include "steady/beam_frustum.hpp"
 #include "steady/brep_builder.hpp"
 #include "steady/clean_check.hpp"
+#include "steady/clip_retries.hpp"
 #include "steady/errors.hpp"
 #include "steady/skin.hpp"
 #include "steady/solid_body.hpp"
@@ -170,9 +174,6 @@ TopoDS_Shape compound_of(const std::vector<TopoDS_Shape>& shapes) {
   return c;
 }
 
-// The fuzzy value of a boundary cluster's last attempt, relative to the cluster's size (see its use).
-constexpr double kLastResortFuzzy = 1e-3;
-
 // A copy of a shape read back from its BREP text (see the clusters' Booleans for why).
 TopoDS_Shape text_copy(const TopoDS_Shape& shape) { return brep_from_text(brep_to_text(shape), "body"); }
 
@@ -202,6 +203,21 @@ TopoDS_Shape run_boolean(BRepAlgoAPI_BooleanOperation& op, const TopoDS_Shape& a
     throw std::runtime_error(os.str());
   }
   return op.Shape();
+}
+
+// run_boolean for a boundary cluster: OpenCASCADE's failure there is one more reason to try again (nothing
+// returned), not the end of the trim. A cancel still ends it.
+std::optional<TopoDS_Shape> try_boolean(BRepAlgoAPI_BooleanOperation& op, const TopoDS_Shape& a,
+                                        const TopoDS_Shape& b, const char* what, Progress& progress) {
+  try {
+    return run_boolean(op, a, b, what, progress);
+  } catch (const Cancelled&) {
+    throw;
+  } catch (const std::runtime_error&) {
+    return std::nullopt;
+  } catch (const Standard_Failure&) {
+    return std::nullopt;
+  }
 }
 
 // Work units of trim_lattice (its progress' total). Before the hubs are classified, fixed shares: the body (its
@@ -451,22 +467,25 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
     }
     // A disk's fate in a Boolean's result: present when the very same face is in it (non-destructive mode),
     // modified when the history says so, deleted otherwise. Presence is looked up in the result itself: the
-    // history has reported untouched faces as deleted (OCC 7.6, seen on clusters of a tilted cylinder).
+    // history has reported untouched faces as deleted (OCC 7.6, seen on clusters of a tilted cylinder). `frame`:
+    // where the Boolean saw its arguments (see turned_frame).
     auto fate_in = [&](BRepAlgoAPI_BooleanOperation& op, const std::unordered_set<const void*>& present,
-                       const TopoDS_Face& disk) {
+                       const TopoDS_Face& disk, const TopLoc_Location& frame) {
       if (present.count(disk.TShape().get())) return Fate::Present;
-      return op.Modified(disk).IsEmpty() ? Fate::Deleted : Fate::Modified;
+      return op.Modified(disk.Moved(frame)).IsEmpty() ? Fate::Deleted : Fate::Modified;
     };
     auto faces_of = [](const TopoDS_Shape& shape) {
       std::unordered_set<const void*> faces;
       for (TopExp_Explorer x(shape, TopAbs_FACE); x.More(); x.Next()) faces.insert(x.Current().TShape().get());
       return faces;
     };
-    auto track = [&](BRepAlgoAPI_BooleanOperation& op, const TopoDS_Shape& result, int cluster) {
+    // (A cluster's own disks first: the clusters are clipped in parallel, each writing its own disks.)
+    auto track = [&](BRepAlgoAPI_BooleanOperation& op, const TopoDS_Shape& result, int cluster,
+                     const TopLoc_Location& frame = TopLoc_Location()) {
       const std::unordered_set<const void*> present = faces_of(result);
       for (Removed& r : removed) {
-        if (!r.active || (cluster >= 0 && r.cluster != cluster) || r.fate != Fate::Present) continue;
-        r.fate = fate_in(op, present, r.cap->face);
+        if ((cluster >= 0 && r.cluster != cluster) || !r.active || r.fate != Fate::Present) continue;
+        r.fate = fate_in(op, present, r.cap->face, frame);
         if (r.fate != Fate::Present) r.changed_by = cluster;
       }
     };
@@ -489,11 +508,12 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
           expected_present[k] = boundaries.front()->contains(frustums[removed[k].cap->beam].cut_circle().center);
     // A cluster's Common is right when its disks met their expected fate (untouched or wholly deleted) and the
     // faces it produced are valid; the other checks (the final union) follow below.
-    auto cluster_result_ok = [&](BRepAlgoAPI_BooleanOperation& op, const TopoDS_Shape& result, int c, int layout) {
+    auto cluster_result_ok = [&](BRepAlgoAPI_BooleanOperation& op, const TopoDS_Shape& result, int c, int layout,
+                                 const TopLoc_Location& frame = TopLoc_Location()) {
       const std::unordered_set<const void*> present = faces_of(result);
       for (std::size_t k = 0; k < removed.size(); ++k) {
         if (removed[k].cluster != c || removed[k].layout != layout) continue;
-        const Fate fate = fate_in(op, present, removed[k].cap->face);
+        const Fate fate = fate_in(op, present, removed[k].cap->face, frame);
         if (fate != (expected_present[k] ? Fate::Present : Fate::Deleted)) return false;
       }
       std::vector<TopoDS_Shape> produced;
@@ -525,18 +545,19 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
       const TopoDS_Shape copy = brep_from_text(tool_text, "body");
       BRepAlgoAPI_Common op;
       Progress boolean(cluster, 9);
-      results[c] = run_boolean(op, solid, copy, what, boolean);
-      if (options.verify_booleans && !cluster_result_ok(op, results[c], static_cast<int>(c), 0))
-        failed[c] = 1;  // tried again below with the spheres laid out the other way
-      else
+      const std::optional<TopoDS_Shape> clipped = try_boolean(op, solid, copy, what, boolean);
+      if (!clipped || (options.verify_booleans && !cluster_result_ok(op, *clipped, static_cast<int>(c), 0))) {
+        failed[c] = 1;  // tried again below (clip_retries)
+      } else {
+        results[c] = *clipped;
         track(op, results[c], static_cast<int>(c));
+      }
       cluster.finish();
     });
     booleans.finish();
-    // OpenCASCADE's failures depend on how the spheres are parametrized (where a seam or pole sits relative to the
-    // body's surface: a sphere face with a self-intersecting wire, measured): the failed clusters are built again
-    // with the other layout (seams and poles elsewhere) and clipped again. Both layouts share the cut circles,
-    // so the rebuilt clusters glue to their neighbours as the first ones would.
+    // The failed clusters are clipped again through clip_retries(): with the spheres laid out the other way,
+    // in turned frames, with fuzzy values. Both layouts share the cut circles, and a turned frame is undone on
+    // the result, so whichever attempt succeeds glues to the neighbours as the first one would have.
     if (std::any_of(failed.begin(), failed.end(), [](char x) { return x; })) {
       progress.check();
       std::unordered_map<std::int64_t, std::size_t> vertices_before;
@@ -567,41 +588,60 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
         removed.push_back({&cap, c, 1, static_cast<bool>(failed[c])});
         expected_present.push_back(present_by_beam.at(cap.beam));
       }
-      for (std::size_t k = 0; k < removed.size(); ++k)
-        if (removed[k].layout == 0 && failed[removed[k].cluster]) removed[k].active = false;
-      std::atomic<std::int64_t> relaid{0}, fuzzy_clusters{0};
+      std::atomic<std::int64_t> retried{0}, relaid{0}, turned{0}, fuzzy_clusters{0};
       tbb::parallel_for(std::size_t(0), cluster_faces.size(), [&](std::size_t c) {
         if (!failed[c]) return;
         progress.check();
-        const TopoDS_Shape solid = solids_from_faces(other_faces[c]);
-        // Last, a fuzzy Common: where the body's surface crosses a hub within about 1e-3 of its size from the circle
-        // where a beam leaves its ball, OpenCASCADE cannot close the section loops (measured: section edges of
-        // length 6.5e-4 on a hub of radius 0.25, the Common returned the hub whole); a fuzzy value of that size
-        // merges them. The result is checked like the others; its edges keep OpenCASCADE's tolerance of the
-        // intersection curves (about 1e-3 of the hub there, as for any curved body).
+        const TopoDS_Shape layouts[2] = {unclipped[c], solids_from_faces(other_faces[c])};
         Bnd_Box box;
-        BRepBndLib::Add(solid, box);
-        const double fuzzy = kLastResortFuzzy * std::sqrt(box.SquareExtent());
+        BRepBndLib::Add(layouts[0], box);
+        const double size = std::sqrt(box.SquareExtent());
+        const gp_Pnt center((box.CornerMin().XYZ() + box.CornerMax().XYZ()) / 2.0);
+        // The cluster's disks of one layout take part in the checks and the assembly, the other's do not.
+        auto use_layout = [&](int layout) {
+          for (Removed& r : removed)
+            if (r.cluster == static_cast<int>(c)) r.active = r.layout == layout;
+        };
         bool done = false;
-        for (const double value : {0.0, fuzzy}) {
+        for (const ClipAttempt& attempt : clip_retries()) {
+          if (attempt.layout == 0 && attempt.frame == 0 && attempt.fuzzy == 0.0) continue;  // the first pass
+          progress.check();
+          const TopLoc_Location frame = turned_frame(attempt.frame, center);
           BRepAlgoAPI_Common op;
-          if (value > 0.0) op.SetFuzzyValue(value);
-          results[c] = run_boolean(op, solid, brep_from_text(tool_text, "body"), what, no_progress());
-          if (!cluster_result_ok(op, results[c], static_cast<int>(c), 1)) continue;
-          track(op, results[c], static_cast<int>(c));
-          fuzzy_clusters += value > 0.0;
+          if (attempt.fuzzy > 0.0) op.SetFuzzyValue(attempt.fuzzy * size);
+          use_layout(attempt.layout);
+          const std::optional<TopoDS_Shape> clipped = try_boolean(
+              op, layouts[attempt.layout].Moved(frame), brep_from_text(tool_text, "body").Moved(frame), what,
+              no_progress());
+          if (!clipped) continue;
+          results[c] = clipped->Moved(frame.Inverted());
+          if (!cluster_result_ok(op, results[c], static_cast<int>(c), attempt.layout, frame)) continue;
+          track(op, results[c], static_cast<int>(c), frame);
+          unclipped[c] = layouts[attempt.layout];
+          ++retried;
+          relaid += attempt.layout == 1;
+          turned += attempt.frame != 0;
+          fuzzy_clusters += attempt.fuzzy > 0.0;
           done = true;
           break;
         }
-        if (!done)
+        if (!done) {
+          // For the developers: STEADY_TRIM_DUMP=<folder> writes the cluster (both layouts) and the tool as BREP.
+          if (const char* dir = std::getenv("STEADY_TRIM_DUMP")) {
+            const std::string stem = std::string(dir) + "/cluster" + std::to_string(c);
+            std::ofstream(stem + "_layout0.brep") << brep_to_text(layouts[0]);
+            std::ofstream(stem + "_layout1.brep") << brep_to_text(layouts[1]);
+            std::ofstream(stem + "_tool.brep") << tool_text;
+          }
           throw std::runtime_error("trim: the Common of boundary cluster " + std::to_string(c) + " (of " +
                                    std::to_string(cluster_faces.size()) +
                                    ") misclassified a disk it did not touch, or produced invalid faces, with "
-                                   "both layouts of its spheres and with a fuzzy value");
-        unclipped[c] = solid;
-        ++relaid;
+                                   "both layouts of its spheres, in turned frames and with fuzzy values");
+        }
       });
+      stats.retried_clusters = retried;
       stats.relaid_clusters = relaid;
+      stats.turned_clusters = turned;
       stats.fuzzy_clusters = fuzzy_clusters;
     }
     // Checks one attempt: every interface disk untouched, the two disks of a split beam with one fate, the
@@ -651,6 +691,7 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
     };
     std::vector<TopoDS_Face> kept;
     std::string error;
+    const auto union_clock = std::chrono::steady_clock::now();
     if (unite && options.policy == TrimPolicy::Clip) {
       // skin U (lattice n inner): the clipped clusters touch the skin only along pieces of the inner boundary,
       // faces that coincide with the skin's and that nothing crosses: a glued Fuse, with no surface-surface
@@ -665,6 +706,7 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
       error = collect(merged, false, kept);
       if (!error.empty()) {
         kept.clear();
+        stats.union_through_pores = true;
         const std::string retry = through_pores(kept);
         error = retry.empty() ? "" : error + "; and through the pores: " + retry;
       }
@@ -676,6 +718,7 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
       error = collect(compound_of(results), false, kept, tool != nullptr);
     }
     if (!error.empty()) throw std::runtime_error("trim: " + error + "; the pieces cannot be glued");
+    stats.union_seconds = seconds_since(union_clock);
     union_progress.finish();
     faces.insert(faces.end(), kept.begin(), kept.end());
   } else if (skin && options.unite_skin) {

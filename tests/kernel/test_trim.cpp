@@ -244,7 +244,7 @@ TEST(Trim, CurvedBodiesAndGradedLatticesAgreeWithMonteCarlo) {
 TEST(Trim, TiltedCylinderThroughTheRetriesAgreesWithMonteCarlo) {
   // The benchmark's swirled strut lattice (2,980 beams) in a cylinder tilted by 0.3 rad: a case where OpenCASCADE's
   // first Common of some boundary cluster was wrong (measured: a sphere face with a self-intersecting wire), so
-  // the retries (other layout of the spheres, fuzzy Common) are what makes it trim. Whatever path it takes, the
+  // the retries (other layout of the spheres, turned frame, fuzzy Common) are what makes it trim. Whatever path it takes, the
   // part must be valid and its volume that of the lattice inside the cylinder.
   LatticeDefinition d;
   d.nodes = {{{0, 0, 0}, 0.25}};
@@ -281,9 +281,10 @@ TEST(Trim, TiltedCylinderThroughTheRetriesAgreesWithMonteCarlo) {
   const double box = (bhi.x - blo.x) * (bhi.y - blo.y) * (bhi.z - blo.z), frac = double(hits) / samples;
   const double sigma = std::sqrt(frac * (1 - frac) / samples) * box;
   EXPECT_NEAR(shape_volume(r.part), frac * box, 4 * sigma);
-  std::printf("[ report ] tilted cylinder: volume %.4f, Monte Carlo %.4f +- %.4f; %lld clusters laid out again, "
-              "%lld fuzzy, whole retry %d\n",
-              shape_volume(r.part), frac * box, sigma, (long long)r.stats.relaid_clusters,
+  std::printf("[ report ] tilted cylinder: volume %.4f, Monte Carlo %.4f +- %.4f; %lld clusters retried (%lld laid "
+              "out again, %lld turned, %lld fuzzy), whole retry %d\n",
+              shape_volume(r.part), frac * box, sigma, (long long)r.stats.retried_clusters,
+              (long long)r.stats.relaid_clusters, (long long)r.stats.turned_clusters,
               (long long)r.stats.fuzzy_clusters, (int)r.stats.relaid_out);
 }
 

@@ -42,11 +42,15 @@ struct TrimStats {
   std::int64_t exact_distance_tests = 0;  // hubs the triangulation could not decide
   std::int64_t removed_beams = 0;         // dangling beams removed
   std::int64_t band_clusters = 0;         // independent Booleans the crossing hubs were split into
-  std::int64_t relaid_clusters = 0;       // clusters clipped again with their spheres laid out the other way
-  std::int64_t fuzzy_clusters = 0;        // of those, clusters that needed a fuzzy Common (1e-3 of their size)
+  std::int64_t retried_clusters = 0;      // clusters whose first Common failed, clipped by a retry; of those:
+  std::int64_t relaid_clusters = 0;       //   with their spheres laid out the other way
+  std::int64_t turned_clusters = 0;       //   in a turned frame
+  std::int64_t fuzzy_clusters = 0;        //   with a fuzzy Common (1e-4 or 1e-3 of their size)
   bool relaid_out = false;                // the first attempt failed as a whole; everything was laid out again
   std::int64_t faces = 0;
   double classify_seconds = 0.0, build_seconds = 0.0, boolean_seconds = 0.0, assemble_seconds = 0.0;
+  double union_seconds = 0.0;      // of boolean_seconds, the union with the skin
+  bool union_through_pores = false;  // the glued Fuse with the skin failed its checks: united through the pores
 };
 
 struct TrimResult {
