@@ -151,6 +151,7 @@ TEST(Trim, SkinUnitedWithLatticeMatchesClosedForm) {
   o.skin = 0.3;
   const TrimResult r = trim_lattice(f, box(-0.7, 4.7), o);
   expect_valid_single_solid(r.part, "skin and lattice");
+  EXPECT_FALSE(r.stats.union_through_pores) << "the glued union with the skin failed its checks";
   const double skin_volume = std::pow(5.4, 3) - std::pow(4.8, 3);
   EXPECT_NEAR(shape_volume(r.skin) / skin_volume, 1.0, 1e-9);
   EXPECT_NEAR(shape_volume(r.part) / (skin_volume + grid_clip_volume(f, -0.4, 4.4)), 1.0, 1e-7);
@@ -237,6 +238,7 @@ TEST(Trim, CurvedBodiesAndGradedLatticesAgreeWithMonteCarlo) {
       const double sigma = std::sqrt(frac * (1 - frac) / samples) * box_volume;
       EXPECT_NEAR(shape_volume(r.part), estimate, 4 * sigma + 1e-9) << what;
       if (skin > 0) EXPECT_NEAR(shape_volume(r.skin) / (c.volume(0.0) - c.volume(skin)), 1.0, 1e-6) << what;
+      EXPECT_FALSE(r.stats.union_through_pores) << what << ": the glued union with the skin failed its checks";
     }
   }
 }
