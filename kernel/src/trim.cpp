@@ -661,7 +661,8 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
     // Checks one attempt: every interface disk untouched, the two disks of a split beam with one fate, the
     // Boolean's faces valid (OpenCASCADE reports success on some results it got wrong: check what it produced,
     // only that, and not again when `faces_checked` says the clusters' checks already did; the rest was built
-    // exactly and the solids are assembled again below). Returns the faces to keep, or an error message.
+    // exactly and the solids are assembled again below), a union with the skin closed up. Returns the faces to
+    // keep, or an error message.
     auto collect = [&](const TopoDS_Shape& merged, bool pores, std::vector<TopoDS_Face>& kept,
                        bool faces_checked = false) -> std::string {
       std::unordered_map<std::int64_t, int> split_present;
@@ -688,6 +689,11 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
         if (!is_valid(produced)) return "its Boolean produced invalid faces (" + validity_report(produced, 2) + ")";
         union_progress.advance(verify_weight);
       }
+      // A union with the skin must close up with the interior's faces: the checks above look at the faces one by
+      // one, and a glued Fuse at 10^5 beams passed them and still left a part that was not closed (measured).
+      if (unite)
+        if (const std::int64_t open = free_edges(kept, faces))
+          return "its faces leave " + std::to_string(open) + " edges open";
       return "";
     };
     // The union with the skin through the pores: body \ (inner \ band). The band only meets the inner boundary
@@ -701,10 +707,7 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
                                              "Cut of the inner body by the boundary hubs", part);
       track(op, pores, -1);
       for (TopExp_Explorer x(body.solid(), TopAbs_FACE); x.More(); x.Next()) kept.push_back(TopoDS::Face(x.Current()));
-      std::string error = collect(pores, true, kept);
-      if (const std::int64_t open = error.empty() ? free_edges(kept, faces) : 0)
-        error = "its faces leave " + std::to_string(open) + " edges open";
-      return error;
+      return collect(pores, true, kept);
     };
     std::vector<TopoDS_Face> kept;
     std::string error;
@@ -721,10 +724,6 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
           run_boolean(op, text_copy(skin->skin), compound_of(results), "glued Fuse with the skin", part);
       track(op, merged, -1);
       error = collect(merged, false, kept);
-      // The union's faces must close up with the interior's: the checks above look at the faces one by one, and
-      // a glued Fuse at 10^5 beams passed them and still left a part that was not closed (measured).
-      if (const std::int64_t open = error.empty() ? free_edges(kept, faces) : 0)
-        error = "its faces leave " + std::to_string(open) + " edges open";
       if (!error.empty()) {
         kept.clear();
         stats.union_through_pores = true;
