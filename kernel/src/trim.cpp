@@ -9,7 +9,9 @@
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <Standard_Failure.hxx>
+#include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
 #include <TopTools_ListOfShape.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
@@ -20,6 +22,7 @@
 #include <chrono>
 #include "steady/brep_io.hpp"
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <numeric>
@@ -35,6 +38,7 @@
 #include "steady/clip_retries.hpp"
 #include "steady/errors.hpp"
 #include "steady/skin.hpp"
+#include "steady/skin_holes.hpp"
 #include "steady/solid_body.hpp"
 #include "occ_progress.hpp"
 
@@ -208,7 +212,9 @@ TopoDS_Shape run_boolean(BRepAlgoAPI_BooleanOperation& op, const TopoDS_Shape& a
 
 // Edges of two sets of faces that one face uses once: where the faces do not close up (a seam is used twice by
 // its one face; the degenerate edges at a sphere's poles do not count).
-std::int64_t free_edges(const std::vector<TopoDS_Face>& a, const std::vector<TopoDS_Face>& b) {
+// `open_faces`: where given, the faces with such an edge.
+std::int64_t free_edges(const std::vector<TopoDS_Face>& a, const std::vector<TopoDS_Face>& b,
+                        std::vector<TopoDS_Shape>* open_faces = nullptr) {
   std::unordered_map<const void*, int> uses;
   for (const auto* faces : {&a, &b})
     for (const TopoDS_Face& face : *faces)
@@ -216,6 +222,14 @@ std::int64_t free_edges(const std::vector<TopoDS_Face>& a, const std::vector<Top
         if (!BRep_Tool::Degenerated(TopoDS::Edge(x.Current()))) ++uses[x.Current().TShape().get()];
   std::int64_t open = 0;
   for (const auto& [edge, count] : uses) open += count == 1;
+  if (open_faces)
+    for (const auto* faces : {&a, &b})
+      for (const TopoDS_Face& face : *faces)
+        for (TopExp_Explorer x(face, TopAbs_EDGE); x.More(); x.Next())
+          if (uses[x.Current().TShape().get()] == 1) {
+            open_faces->push_back(face);
+            break;
+          }
   return open;
 }
 
@@ -494,11 +508,13 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
       return faces;
     };
     // (A cluster's own disks first: the clusters are clipped in parallel, each writing its own disks.)
+    // `among`: for the final Boolean (cluster -1), the clusters that took part in it, when not all did.
     auto track = [&](BRepAlgoAPI_BooleanOperation& op, const TopoDS_Shape& result, int cluster,
-                     const TopLoc_Location& frame = TopLoc_Location()) {
+                     const TopLoc_Location& frame = TopLoc_Location(), const std::vector<char>* among = nullptr) {
       const std::unordered_set<const void*> present = faces_of(result);
       for (Removed& r : removed) {
         if ((cluster >= 0 && r.cluster != cluster) || !r.active || r.fate != Fate::Present) continue;
+        if (among && !(*among)[r.cluster]) continue;
         r.fate = fate_in(op, present, r.cap->face, frame);
         if (r.fate != Fate::Present) r.changed_by = cluster;
       }
@@ -530,13 +546,29 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
         const Fate fate = fate_in(op, present, removed[k].cap->face, frame);
         if (fate != (expected_present[k] ? Fate::Present : Fate::Deleted)) return false;
       }
+      // The result must close up by itself: a Common that drops a face (a beam's cone beside an untouched ball)
+      // passes the other checks and leaves the part open (measured at 101,343 beams with a skin).
+      std::vector<TopoDS_Face> all;
       std::vector<TopoDS_Shape> produced;
-      for (TopExp_Explorer x(result, TopAbs_FACE); x.More(); x.Next())
+      for (TopExp_Explorer x(result, TopAbs_FACE); x.More(); x.Next()) {
+        all.push_back(TopoDS::Face(x.Current()));
         if (!removed_index.count(x.Current().TShape().get())) produced.push_back(x.Current());
-      return is_valid(compound_of(produced));
+      }
+      return free_edges(all, {}) == 0 && is_valid(compound_of(produced));
     };
     std::vector<TopoDS_Shape> results(cluster_faces.size()), unclipped(cluster_faces.size());
     std::vector<char> failed(cluster_faces.size(), 0);
+    // With a skin: each clipped cluster's cut faces (on the inner boundary), and whether they can be holes in it
+    // (skin_holes.hpp).
+    std::vector<std::vector<CutFace>> cluster_cuts(cluster_faces.size());
+    std::vector<char> as_holes(cluster_faces.size(), 0);
+    auto find_cuts = [&](BRepAlgoAPI_BooleanOperation& op, const TopoDS_Shape& tool_passed, std::size_t c) {
+      if (!unite) return;
+      TopTools_IndexedMapOfShape tool_faces;
+      TopExp::MapShapes(tool_passed, TopAbs_FACE, tool_faces);
+      cluster_cuts[c] = cut_faces(op, tool_faces, results[c]);
+      as_holes[c] = cut_faces_are_holes(results[c], cluster_cuts[c]);
+    };
     const std::string tool_text = tool ? brep_to_text(*tool) : std::string();
     // Each cluster's share of the Booleans' progress is its number of faces; a cancel stops the clusters not yet
     // started, and the running Booleans at their next check.
@@ -565,6 +597,7 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
       } else {
         results[c] = *clipped;
         track(op, results[c], static_cast<int>(c));
+        find_cuts(op, copy, c);
       }
       cluster.finish();
     });
@@ -624,13 +657,14 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
           BRepAlgoAPI_Common op;
           if (attempt.fuzzy > 0.0) op.SetFuzzyValue(attempt.fuzzy * size);
           use_layout(attempt.layout);
-          const std::optional<TopoDS_Shape> clipped = try_boolean(
-              op, layouts[attempt.layout].Moved(frame), brep_from_text(tool_text, "body").Moved(frame), what,
-              no_progress());
+          const TopoDS_Shape tool_copy = brep_from_text(tool_text, "body").Moved(frame);
+          const std::optional<TopoDS_Shape> clipped =
+              try_boolean(op, layouts[attempt.layout].Moved(frame), tool_copy, what, no_progress());
           if (!clipped) continue;
           results[c] = clipped->Moved(frame.Inverted());
           if (!cluster_result_ok(op, results[c], static_cast<int>(c), attempt.layout, frame)) continue;
           track(op, results[c], static_cast<int>(c), frame);
+          find_cuts(op, tool_copy, c);
           unclipped[c] = layouts[attempt.layout];
           ++retried;
           relaid += attempt.layout == 1;
@@ -661,10 +695,11 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
     // Checks one attempt: every interface disk untouched, the two disks of a split beam with one fate, the
     // Boolean's faces valid (OpenCASCADE reports success on some results it got wrong: check what it produced,
     // only that, and not again when `faces_checked` says the clusters' checks already did; the rest was built
-    // exactly and the solids are assembled again below), a union with the skin closed up. Returns the faces to
-    // keep, or an error message.
+    // exactly and the solids are assembled again below, `checked` holds faces checked before), a union with the
+    // skin closed up. Returns the faces to keep, or an error message.
     auto collect = [&](const TopoDS_Shape& merged, bool pores, std::vector<TopoDS_Face>& kept,
-                       bool faces_checked = false) -> std::string {
+                       bool faces_checked = false,
+                       const std::unordered_set<const void*>& checked = {}) -> std::string {
       std::unordered_map<std::int64_t, int> split_present;
       for (const Removed& r : removed) {
         if (!r.active) continue;
@@ -685,15 +720,25 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
           kept.push_back(TopoDS::Face(pores ? x.Current().Reversed() : x.Current()));
       if (options.verify_booleans && !faces_checked) {
         union_progress.check();
-        const TopoDS_Shape produced = compound_of(std::vector<TopoDS_Shape>(kept.begin(), kept.end()));
+        std::vector<TopoDS_Shape> unchecked;
+        for (const TopoDS_Face& face : kept)
+          if (!checked.count(face.TShape().get())) unchecked.push_back(face);
+        const TopoDS_Shape produced = compound_of(unchecked);
         if (!is_valid(produced)) return "its Boolean produced invalid faces (" + validity_report(produced, 2) + ")";
         union_progress.advance(verify_weight);
       }
       // A union with the skin must close up with the interior's faces: the checks above look at the faces one by
       // one, and a glued Fuse at 10^5 beams passed them and still left a part that was not closed (measured).
       if (unite)
-        if (const std::int64_t open = free_edges(kept, faces))
+        if (const std::int64_t open = free_edges(kept, faces)) {
+          // For the developers: STEADY_TRIM_DUMP=<folder> writes the faces with an open edge as BREP.
+          if (const char* dir = std::getenv("STEADY_TRIM_DUMP")) {
+            std::vector<TopoDS_Shape> open_faces;
+            free_edges(kept, faces, &open_faces);
+            std::ofstream(std::string(dir) + "/open_faces.brep") << brep_to_text(compound_of(open_faces));
+          }
           return "its faces leave " + std::to_string(open) + " edges open";
+        }
       return "";
     };
     // The union with the skin through the pores: body \ (inner \ band). The band only meets the inner boundary
@@ -709,24 +754,95 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
       for (TopExp_Explorer x(body.solid(), TopAbs_FACE); x.More(); x.Next()) kept.push_back(TopoDS::Face(x.Current()));
       return collect(pores, true, kept);
     };
+    const auto union_clock = std::chrono::steady_clock::now();
+    // The union with the skin by holes in its inner faces for the clusters whose cut faces can be holes, and a
+    // glued Fuse for the others (clusters straddling the inner boundary's edges or seams).
+    auto through_holes = [&](std::vector<TopoDS_Face>& kept) -> std::string {
+      TopTools_IndexedMapOfShape inner_faces, skin_faces;
+      TopExp::MapShapes(skin->inner, TopAbs_FACE, inner_faces);
+      TopExp::MapShapes(skin->skin, TopAbs_FACE, skin_faces);
+      std::vector<TopoDS_Face> faces_out;  // the union's faces but the inner boundary's
+      std::unordered_set<const void*> checked;  // the faces of the clusters glued by holes, checked after their Common
+      std::vector<std::vector<TopoDS_Face>> pieces(inner_faces.Extent() + 1), holes(inner_faces.Extent() + 1);
+      std::vector<char> fused(cluster_faces.size(), 0);
+      std::vector<TopoDS_Shape> fused_results;
+      for (std::size_t c = 0; c < cluster_faces.size(); ++c) {
+        if (!as_holes[c]) {
+          fused[c] = 1;
+          fused_results.push_back(results[c]);
+          continue;
+        }
+        ++stats.holed_clusters;
+        std::unordered_set<const void*> cut;
+        for (const CutFace& k : cluster_cuts[c]) {
+          cut.insert(k.face.TShape().get());
+          holes[k.inner_face].push_back(k.face);
+        }
+        for (TopExp_Explorer x(results[c], TopAbs_FACE); x.More(); x.Next())
+          if (!cut.count(x.Current().TShape().get())) {
+            faces_out.push_back(TopoDS::Face(x.Current()));
+            checked.insert(x.Current().TShape().get());
+          }
+      }
+      // The skin's face standing for inner face i: the same face (reversed), or its pieces after the Fuse.
+      std::unordered_map<const void*, int> inner_of;  // by TShape
+      if (fused_results.empty()) {
+        for (int i = 1; i <= inner_faces.Extent(); ++i) inner_of.emplace(inner_faces(i).TShape().get(), i);
+        for (TopExp_Explorer x(skin->skin, TopAbs_FACE); x.More(); x.Next()) {
+          const auto it = inner_of.find(x.Current().TShape().get());
+          (it == inner_of.end() ? faces_out : pieces[it->second]).push_back(TopoDS::Face(x.Current()));
+        }
+      } else {
+        BRepAlgoAPI_Fuse op;
+        op.SetGlue(BOPAlgo_GlueShift);
+        Progress part(union_progress, union_weight);
+        const TopoDS_Shape copy = text_copy(skin->skin);
+        const TopoDS_Shape merged =
+            run_boolean(op, copy, compound_of(fused_results), "glued Fuse with the skin", part);
+        track(op, merged, -1, TopLoc_Location(), &fused);
+        TopTools_IndexedMapOfShape copy_faces;
+        TopExp::MapShapes(copy, TopAbs_FACE, copy_faces);
+        if (copy_faces.Extent() != skin_faces.Extent()) return "the skin read back from BREP text differs";
+        for (int i = 1; i <= inner_faces.Extent(); ++i) {
+          const TopoDS_Shape& face = copy_faces(skin_faces.FindIndex(inner_faces(i)));
+          inner_of.emplace(face.TShape().get(), i);
+          for (TopTools_ListOfShape::Iterator it(op.Modified(face)); it.More(); it.Next())
+            inner_of.emplace(it.Value().TShape().get(), i);
+        }
+        for (TopExp_Explorer x(merged, TopAbs_FACE); x.More(); x.Next()) {
+          const auto it = inner_of.find(x.Current().TShape().get());
+          (it == inner_of.end() ? faces_out : pieces[it->second]).push_back(TopoDS::Face(x.Current()));
+        }
+      }
+      for (int i = 1; i <= inner_faces.Extent(); ++i) {
+        if (holes[i].empty()) {
+          faces_out.insert(faces_out.end(), pieces[i].begin(), pieces[i].end());
+          continue;
+        }
+        std::string error;
+        const std::vector<TopoDS_Face> pierced = pierce(pieces[i], holes[i], error);
+        if (!error.empty()) return "holes in the skin: " + error;
+        faces_out.insert(faces_out.end(), pierced.begin(), pierced.end());
+      }
+      return collect(compound_of(std::vector<TopoDS_Shape>(faces_out.begin(), faces_out.end())), false, kept, false,
+                     checked);
+    };
     std::vector<TopoDS_Face> kept;
     std::string error;
-    const auto union_clock = std::chrono::steady_clock::now();
     if (unite && options.policy == TrimPolicy::Clip) {
-      // skin U (lattice n inner): the clipped clusters touch the skin only along pieces of the inner boundary,
-      // faces that coincide with the skin's and that nothing crosses: a glued Fuse, with no surface-surface
-      // intersection at all (each cluster met the inner body in its own local Common above). Should OpenCASCADE
-      // get it wrong, the union is done again through the pores.
-      BRepAlgoAPI_Fuse op;
-      op.SetGlue(BOPAlgo_GlueShift);
-      Progress part(union_progress, union_weight);
-      const TopoDS_Shape merged =
-          run_boolean(op, text_copy(skin->skin), compound_of(results), "glued Fuse with the skin", part);
-      track(op, merged, -1);
-      error = collect(merged, false, kept);
+      // skin U (lattice n inner): the clipped clusters touch the skin only along their cut faces, pieces of the
+      // inner boundary's faces that nothing crosses. Where they can, the cut faces become holes in the skin's
+      // inner faces (no Boolean: skin_holes.hpp); the other clusters go into a glued Fuse with the skin, with no
+      // surface-surface intersection at all (each cluster met the inner body in its own local Common above).
+      // Should either go wrong, the union is done again through the pores.
+      error = through_holes(kept);
       if (!error.empty()) {
         kept.clear();
         stats.union_through_pores = true;
+        stats.pores_reason = error;
+        // For the developers: STEADY_TRIM_VERBOSE=1 says why as soon as it happens (a pores' Cut can be long).
+        if (std::getenv("STEADY_TRIM_VERBOSE")) std::fprintf(stderr, "trim: through the pores: %s\n", error.c_str());
+        stats.holed_clusters = 0;
         const std::string retry = through_pores(kept);
         error = retry.empty() ? "" : error + "; and through the pores: " + retry;
       }
@@ -777,9 +893,11 @@ TrimResult trim_lattice(const FlatLattice& f, const TopoDS_Shape& body_shape, co
     // boundary hubs' spheres laid out the other way (measured: a cylinder tilted by 0.3 rad that failed the first
     // layout trims with the second). The progress bar does not go back; the retry reports nothing.
     progress.check();
+    if (std::getenv("STEADY_TRIM_VERBOSE")) std::fprintf(stderr, "trim: laid out again: %s\n", first.what());
     try {
       TrimResult retried = trim_attempt(f, body_shape, options, SeamPreference::MostCrossings, no_progress());
       retried.stats.relaid_out = true;
+      retried.stats.relaid_reason = first.what();
       progress.finish();
       return retried;
     } catch (const std::runtime_error& second) {

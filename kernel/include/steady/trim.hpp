@@ -46,11 +46,15 @@ struct TrimStats {
   std::int64_t relaid_clusters = 0;       //   with their spheres laid out the other way
   std::int64_t turned_clusters = 0;       //   in a turned frame
   std::int64_t fuzzy_clusters = 0;        //   with a fuzzy Common (1e-4 or 1e-3 of their size)
+  std::int64_t holed_clusters = 0;        // with a skin: clusters glued to it by holes in its inner faces, no
+                                          // Boolean (the others by a glued Fuse)
   bool relaid_out = false;                // the first attempt failed as a whole; everything was laid out again
+  std::string relaid_reason;              //   why the first attempt failed
   std::int64_t faces = 0;
   double classify_seconds = 0.0, build_seconds = 0.0, boolean_seconds = 0.0, assemble_seconds = 0.0;
   double union_seconds = 0.0;      // of boolean_seconds, the union with the skin
-  bool union_through_pores = false;  // the glued Fuse with the skin failed its checks: united through the pores
+  bool union_through_pores = false;  // the union with the skin failed its checks: united through the pores
+  std::string pores_reason;          //   what the check found
 };
 
 struct TrimResult {
