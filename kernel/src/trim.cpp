@@ -762,7 +762,8 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
       TopExp::MapShapes(skin->inner, TopAbs_FACE, inner_faces);
       TopExp::MapShapes(skin->skin, TopAbs_FACE, skin_faces);
       std::vector<TopoDS_Face> faces_out;  // the union's faces but the inner boundary's
-      std::unordered_set<const void*> checked;  // the faces of the clusters glued by holes, checked after their Common
+      // Faces checked already: the clusters' glued by holes (after their Common), the pierced ones (by pierce).
+      std::unordered_set<const void*> checked;
       std::vector<std::vector<TopoDS_Face>> pieces(inner_faces.Extent() + 1), holes(inner_faces.Extent() + 1);
       std::vector<char> fused(cluster_faces.size(), 0);
       std::vector<TopoDS_Shape> fused_results;
@@ -820,9 +821,10 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
           continue;
         }
         std::string error;
-        const std::vector<TopoDS_Face> pierced = pierce(pieces[i], holes[i], error);
+        const std::vector<TopoDS_Face> pierced = pierce(pieces[i], holes[i], options.verify_booleans, error);
         if (!error.empty()) return "holes in the skin: " + error;
         faces_out.insert(faces_out.end(), pierced.begin(), pierced.end());
+        for (const TopoDS_Face& face : pierced) checked.insert(face.TShape().get());  // pierce checked them
       }
       return collect(compound_of(std::vector<TopoDS_Shape>(faces_out.begin(), faces_out.end())), false, kept, false,
                      checked);

@@ -97,7 +97,7 @@ TEST(SkinHoles, CutFaceInsideAFaceBecomesAHoleAndTheUnionIsExact) {
       faces.push_back(TopoDS::Face(x.Current()));
       continue;
     }
-    const std::vector<TopoDS_Face> pierced = pierce({TopoDS::Face(x.Current())}, {cuts[0].face}, error);
+    const std::vector<TopoDS_Face> pierced = pierce({TopoDS::Face(x.Current())}, {cuts[0].face}, true, error);
     ASSERT_EQ(pierced.size(), 1u) << error;
     EXPECT_EQ(pierced[0].Orientation(), x.Current().Orientation());
     faces.push_back(pierced[0]);
@@ -152,6 +152,23 @@ TEST(SkinHoles, HoleOutsideItsFaceIsAnError) {
   }
   ASSERT_FALSE(bottom.IsNull());
   std::string error;
-  EXPECT_TRUE(pierce({bottom}, {cuts[0].face}, error).empty());
+  EXPECT_TRUE(pierce({bottom}, {cuts[0].face}, true, error).empty());
   EXPECT_FALSE(error.empty());
+}
+
+TEST(SkinHoles, CrossingHolesAreRefusedByTheLocalCheck) {
+  Skin skin;
+  Clipped a, b;
+  clip(a, skin.inner, 5.0, 4.0, 8.0);
+  clip(b, skin.inner, 5.5, 4.5, 8.0);  // overlaps the first on the top face
+  const std::vector<CutFace> ca = cut_faces(a.op, a.tool_faces, a.result), cb = cut_faces(b.op, b.tool_faces, b.result);
+  ASSERT_EQ(ca.size(), 1u);
+  ASSERT_EQ(cb.size(), 1u);
+  TopTools_IndexedMapOfShape inner_faces;
+  TopExp::MapShapes(skin.inner, TopAbs_FACE, inner_faces);
+  const TopoDS_Face top = TopoDS::Face(inner_faces(ca[0].inner_face));
+  std::string error;
+  EXPECT_EQ(pierce({top}, {ca[0].face}, true, error).size(), 1u) << error;
+  EXPECT_TRUE(pierce({top}, {ca[0].face, cb[0].face}, true, error).empty());
+  EXPECT_EQ(error, "two holes in the skin's face cross");
 }

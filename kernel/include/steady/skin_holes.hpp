@@ -35,8 +35,9 @@ bool cut_faces_are_holes(const TopoDS_Shape& result, const std::vector<CutFace>&
 // `pieces`: the faces that stand for one face of the inner boundary in the skin (the face itself, or its pieces
 // after a Fuse), on the surface the holes' cut faces lie on, with the same parametrization. Returns the pieces
 // with the holes cut, each piece with the orientation it had; the holes' edges gain a curve on the new faces.
-// Returns an empty vector and sets `error` when a hole lies in no piece.
+// `verify`: check the new faces as BRepCheck would, locally (see skin_holes.cpp). Returns an empty vector and sets
+// `error` when a hole lies in no piece, or the check fails.
 std::vector<TopoDS_Face> pierce(const std::vector<TopoDS_Face>& pieces, const std::vector<TopoDS_Face>& holes,
-                                std::string& error);
+                                bool verify, std::string& error);
 
 }  // namespace steady
