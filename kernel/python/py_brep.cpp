@@ -61,6 +61,27 @@ py::dict to_dict(const Properties& p) {
   return d;
 }
 
+// How a trim went, into the caller's dict: what the report view shows (retries, fuzzy Booleans, fallbacks).
+void fill_stats(const steady::TrimStats& s, py::dict& d) {
+  d["inside_hubs"] = s.inside_hubs;
+  d["outside_hubs"] = s.outside_hubs;
+  d["crossing_hubs"] = s.crossing_hubs;
+  d["removed_beams"] = s.removed_beams;
+  d["band_clusters"] = s.band_clusters;
+  d["retried_clusters"] = s.retried_clusters;
+  d["relaid_clusters"] = s.relaid_clusters;
+  d["turned_clusters"] = s.turned_clusters;
+  d["fuzzy_clusters"] = s.fuzzy_clusters;
+  d["holed_clusters"] = s.holed_clusters;
+  d["relaid_out"] = s.relaid_out;
+  d["relaid_reason"] = s.relaid_reason;
+  d["union_through_pores"] = s.union_through_pores;
+  d["pores_reason"] = s.pores_reason;
+  d["faces"] = s.faces;
+  d["boolean_seconds"] = s.boolean_seconds;
+  d["union_seconds"] = s.union_seconds;
+}
+
 }  // namespace
 
 void bind_brep(py::module_& m) {
@@ -93,21 +114,33 @@ void bind_brep(py::module_& m) {
   lattice.def(
       "brep",
       [](const Lattice& lat, const py::object& body, const std::string& policy, double skin,
-         const std::string& dangling, const py::object& progress) {
+         const std::string& dangling, const py::object& progress, const py::object& stats) {
         const steady::LatticePartRequest request = part_request(body, policy, skin, dangling);
-        return run_with_progress(progress, [&](steady::Progress& p) {
-          return steady::lattice_part_brep(steady::flatten(lat), request, p);
+        if (!stats.is_none() && !py::isinstance<py::dict>(stats))
+          value_error("stats", "expected a dict to fill, or None");
+        steady::TrimStats trim;
+        std::string text = run_with_progress(progress, [&](steady::Progress& p) {
+          return steady::lattice_part_brep(steady::flatten(lat), request, p, &trim);
         });
+        if (!stats.is_none()) {
+          py::dict d = stats.cast<py::dict>();
+          fill_stats(trim, d);
+        }
+        return text;
       },
       py::arg("body") = py::none(), py::arg("policy") = "clip", py::arg("skin") = 0.0, py::arg("dangling") = "keep",
-      py::arg("progress") = py::none(),
+      py::arg("progress") = py::none(), py::arg("stats") = py::none(),
       "BREP text of the lattice as one solid (a compound of solids when it has several components). body: BREP "
       "text of a solid (Part.Shape.exportBrepToString()) to trim into; policy: 'clip' (cut at the boundary) or "
       "'whole' (keep only hubs entirely inside, never cut); skin: wall thickness of a skin united with the "
       "lattice; dangling: 'keep' or 'remove' beams joining a kept hub to a dropped one. progress: None or a "
       "callable progress(fraction) called on this thread about every 0.1 s with a growing fraction in [0, 1] "
       "(1 at the end); returning False cancels: steadylattice.Cancelled is raised soon after (an exception the "
-      "callable raises is raised instead), and nothing has changed.");
+      "callable raises is raised instead), and nothing has changed. stats: None or a dict, filled with how the trim "
+      "went: hubs inside/outside/crossing, band_clusters (local Booleans), retried_clusters and of those "
+      "relaid_/turned_/fuzzy_clusters (fuzzy: clipped with a tolerance of 1e-4 to 1e-3 of the cluster's size, "
+      "exact only to that), holed_clusters (glued to the skin with no Boolean), relaid_out and union_through_pores "
+      "with their reasons, faces, boolean_seconds, union_seconds.");
   lattice.def(
       "write_step",
       [](const Lattice& lat, const std::string& path, const py::object& body, const std::string& policy, double skin,

@@ -26,13 +26,15 @@ constexpr std::int64_t kStepPartUnits = 60, kStepFileUnits = 40;
 
 }  // namespace
 
-std::string lattice_part_brep(const FlatLattice& lattice, const LatticePartRequest& request, Progress& progress) {
+std::string lattice_part_brep(const FlatLattice& lattice, const LatticePartRequest& request, Progress& progress,
+                              TrimStats* stats) {
   progress.set_total(kPartUnits + kTextUnits);
   TrimResult r;
   {
     Progress part(progress, kPartUnits);
     r = make_part(lattice, request, part);
   }
+  if (stats) *stats = r.stats;
   std::string text;
   {
     Progress part(progress, kTextUnits);

@@ -90,9 +90,15 @@ def test_trimmed_into_box_matches_closed_form():
 
 def test_skin_and_step_assembly_round_trip(tmp_path):
     lat = strut_lattice(6)
-    text = lat.brep(body=body("skin_box.brep"), skin=0.3)
+    stats = {}
+    text = lat.brep(body=body("skin_box.brep"), skin=0.3, stats=stats)
     props = sl.brep_properties(text)
     assert props["valid"], props["report"]
+    # How the trim went: every boundary cluster clipped at the first try and glued to the skin by holes.
+    assert stats["crossing_hubs"] > 0 and stats["band_clusters"] > 0
+    assert stats["holed_clusters"] == stats["band_clusters"]
+    assert stats["fuzzy_clusters"] == 0 and not stats["union_through_pores"] and not stats["relaid_out"]
+    assert stats["faces"] == props["faces"]
     assert props["solids"] == 1
     skin_volume = 5.4 ** 3 - 4.8 ** 3
     lattice_volume = clipped_volume(lat, -0.4, 4.4)
@@ -136,6 +142,7 @@ def test_curved_body_gives_a_valid_solid():
         (dict(body="not brep"), "body: is not BREP text"),
         (dict(body=body("box.brep"), skin=-1.0), "skin: must be a thickness >= 0"),
         (dict(body=body("box.brep"), skin=2.0), "skin:"),
+        (dict(body=body("box.brep"), stats=[]), "stats: expected a dict"),
         (dict(skin=0.5), "skin: needs a body"),
         (dict(body=body("box.brep"), policy="cut"), "policy: must be 'clip' or 'whole'"),
         (dict(body=body("box.brep"), dangling="maybe"), "dangling:"),

@@ -19,9 +19,10 @@ struct LatticePartRequest {
 };
 
 // The part's solid as BREP text. InvalidInput for a skin without a body, and for everything trim_lattice and
-// build_lattice_brep refuse; Cancelled soon after the progress is cancelled.
+// build_lattice_brep refuse; Cancelled soon after the progress is cancelled. `stats`: where given, how the trim
+// went (all zero without a body).
 std::string lattice_part_brep(const FlatLattice& lattice, const LatticePartRequest& request,
-                              Progress& progress = no_progress());
+                              Progress& progress = no_progress(), TrimStats* stats = nullptr);
 
 struct StepNames {
   std::string assembly = "LatticePart";

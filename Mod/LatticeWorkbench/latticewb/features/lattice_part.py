@@ -60,9 +60,10 @@ class LatticePart(StatelessProxy):
     def execute(self, obj):
         import steadylattice
         from latticewb import progress
+        stats = {}
         try:
             with progress.LongOperation("Trimming %s" % obj.Label) as report:
-                text = part_brep(obj, report)
+                text = part_brep(obj, report, stats)
         except ValueError as error:
             FreeCAD.Console.PrintError("%s: %s\n" % (obj.Label, error))
             raise ValueError("%s: %s" % (obj.Label, error)) from None
@@ -74,6 +75,29 @@ class LatticePart(StatelessProxy):
         obj.Shape = shape
         obj.Volume = shape.Volume
         obj.FaceCount = len(shape.Faces)
+        report_trim(obj.Label, stats)
+
+
+def report_trim(label, stats):
+    """Tells the report view what the user should know about a trim: Booleans that are exact only to a
+    tolerance (a warning), and the retries and fallbacks OpenCASCADE needed (messages)."""
+    if not stats:
+        return
+    if stats["fuzzy_clusters"]:
+        FreeCAD.Console.PrintWarning(
+            "%s: %d boundary cluster(s) of %d were clipped with a fuzzy Boolean (OpenCASCADE failed the exact one "
+            "where the body's surface grazes the lattice): the part is exact there only to 1e-4 to 1e-3 of a "
+            "hub's size\n" % (label, stats["fuzzy_clusters"], stats["band_clusters"]))
+    retried = stats["retried_clusters"] - stats["fuzzy_clusters"]
+    if retried > 0:
+        FreeCAD.Console.PrintMessage(
+            "%s: %d boundary cluster(s) clipped exactly on a second try (other layout or turned frame)\n"
+            % (label, retried))
+    if stats["relaid_out"]:
+        FreeCAD.Console.PrintMessage("%s: trimmed on the second attempt (%s)\n" % (label, stats["relaid_reason"]))
+    if stats["union_through_pores"]:
+        FreeCAD.Console.PrintMessage("%s: the union with the skin went through the pores (%s)\n"
+                                     % (label, stats["pores_reason"]))
 
 
 def body_brep(obj):
@@ -96,12 +120,13 @@ def kernel_request(obj):
     return api.lattice(obj.Lattice), body_brep(obj), obj.Policy, obj.Skin.Value, obj.Dangling
 
 
-def part_brep(obj, report=None):
-    """BREP text of the part. report(fraction) -> False cancels (steadylattice.Cancelled, nothing changed)."""
+def part_brep(obj, report=None, stats=None):
+    """BREP text of the part. report(fraction) -> False cancels (steadylattice.Cancelled, nothing changed);
+    stats: None or a dict the kernel fills with how the trim went (see steadylattice.Lattice.brep)."""
     lattice, body, policy, skin, dangling = kernel_request(obj)
     if skin > 0.0 and body is None:
         raise ValueError("Skin: a skin needs a Body")
-    return lattice.brep(body, policy, skin, dangling, progress=report)
+    return lattice.brep(body, policy, skin, dangling, progress=report, stats=stats)
 
 
 def write_step_assembly(obj, path, report=None):
