@@ -67,7 +67,7 @@ bool cut_faces_are_holes(const TopoDS_Shape& result, const std::vector<CutFace>&
 
 namespace {
 
-// A point of the hole's outline in the parameters of its surface, and the surface there.
+// A point of the hole's outline, in the parameters of its surface.
 bool outline_point(const TopoDS_Face& hole, gp_Pnt2d& uv) {
   TopExp_Explorer e(hole, TopAbs_EDGE);
   if (!e.More()) return false;
