@@ -73,6 +73,8 @@ void fill_stats(const steady::TrimStats& s, py::dict& d) {
   d["turned_clusters"] = s.turned_clusters;
   d["fuzzy_clusters"] = s.fuzzy_clusters;
   d["holed_clusters"] = s.holed_clusters;
+  d["core_hubs"] = s.core_hubs;
+  d["distinct_cores"] = s.distinct_cores;
   d["relaid_out"] = s.relaid_out;
   d["relaid_reason"] = s.relaid_reason;
   d["union_through_pores"] = s.union_through_pores;

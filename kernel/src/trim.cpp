@@ -455,6 +455,14 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
     interior_pieces = build_brep_pieces(f, sel, cuts, part);
   }
   stats.build_seconds = seconds_since(clock);
+  for (const BrepPieces* p : {&band_pieces, &interior_pieces}) {
+    stats.core_hubs += p->stats.core_hubs;
+    stats.distinct_cores += p->stats.distinct_cores;
+  }
+  if (std::getenv("STEADY_TRIM_VERBOSE"))
+    std::fprintf(stderr, "trim: built the boundary and interior hubs in %.1f s (%lld and %lld distinct cores)\n",
+                 stats.build_seconds, static_cast<long long>(band_pieces.stats.distinct_cores),
+                 static_cast<long long>(interior_pieces.stats.distinct_cores));
 
   clock = std::chrono::steady_clock::now();
   std::vector<TopoDS_Face> faces = interior_pieces.faces;
