@@ -617,9 +617,14 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
       progress.check();
       std::unordered_map<std::int64_t, std::size_t> vertices_before;
       for (const auto& [beam, circle] : cuts) vertices_before[beam] = circle.vertices.size();
+      // Only the failed clusters' hubs (and their beams) are laid out again: a crowded hub's core in the other
+      // layout can take minutes (measured on the main job's octet lattice), and the other clusters need none.
       BrepSelection other;
-      other.balls = band;
-      other.beams = band_beams;
+      other.balls.assign(n, 0);
+      other.beams.assign(f.beam_count(), 0);
+      for (std::int64_t i = 0; i < n; ++i) other.balls[i] = band[i] && failed[cluster_index.at(find(i))];
+      for (std::int64_t e = 0; e < f.beam_count(); ++e)
+        other.beams[e] = band_beams[e] && (other.balls[f.beams[e].a] || other.balls[f.beams[e].b]);
       other.split = split;
       other.seams = seams == SeamPreference::FewestCrossings ? SeamPreference::MostCrossings
                                                              : SeamPreference::FewestCrossings;
