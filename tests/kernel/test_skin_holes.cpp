@@ -4,12 +4,10 @@
 // inner box's edges must be refused as a hole.
 #include <BRepAlgoAPI_Common.hxx>
 #include <BRepCheck_Analyzer.hxx>
-#include <BRepGProp.hxx>
 #include <BRepGProp_Face.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRep_Builder.hxx>
-#include <GProp_GProps.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopTools_ListOfShape.hxx>
@@ -19,8 +17,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 #include <unordered_set>
 
+#include "steady/brep_io.hpp"
 #include "steady/skin_holes.hpp"
 
 using namespace steady;
@@ -49,10 +49,15 @@ void clip(Clipped& c, const TopoDS_Shape& inner, double x, double y, double z0) 
   TopExp::MapShapes(inner, TopAbs_FACE, c.tool_faces);
 }
 
-double volume(const TopoDS_Shape& s) {
-  GProp_GProps p;
-  BRepGProp::VolumeProperties(s, p);
-  return p.Mass();
+// The point at the middle of a face's parameter range, and the face's normal there.
+std::pair<gp_Pnt, gp_Vec> middle(const TopoDS_Face& face) {
+  BRepGProp_Face surface(face);
+  double u0, u1, v0, v1;
+  surface.Bounds(u0, u1, v0, v1);
+  gp_Pnt p;
+  gp_Vec n;
+  surface.Normal(0.5 * (u0 + u1), 0.5 * (v0 + v1), p, n);
+  return {p, n};
 }
 
 struct Skin {
@@ -78,15 +83,7 @@ TEST(SkinHoles, CutFaceInsideAFaceBecomesAHoleAndTheUnionIsExact) {
   TopTools_IndexedMapOfShape inner_faces;
   TopExp::MapShapes(skin.inner, TopAbs_FACE, inner_faces);
   const TopoDS_Face top = TopoDS::Face(inner_faces(cuts[0].inner_face));
-  {
-    BRepGProp_Face surface(top);
-    double u0, u1, v0, v1;
-    surface.Bounds(u0, u1, v0, v1);
-    gp_Pnt p;
-    gp_Vec n;
-    surface.Normal(0.5 * (u0 + u1), 0.5 * (v0 + v1), p, n);
-    EXPECT_NEAR(p.Z(), 10.0, 1e-12) << "the cut face is said to come from another face than the top";
-  }
+  EXPECT_NEAR(middle(top).first.Z(), 10.0, 1e-12) << "the cut face is said to come from another face than the top";
   EXPECT_TRUE(cut_faces_are_holes(c.result, cuts));
 
   // The skin's inner shell with the hole in its top face, and the cylinder's faces but the cut face.
@@ -120,7 +117,7 @@ TEST(SkinHoles, CutFaceInsideAFaceBecomesAHoleAndTheUnionIsExact) {
   b.Add(part, inner);
   EXPECT_TRUE(BRepCheck_Analyzer(part).IsValid());
   const double exact = std::pow(12.0, 3) - std::pow(10.0, 3) + M_PI * 2.0;
-  EXPECT_NEAR(volume(part) / exact, 1.0, 1e-9);
+  EXPECT_NEAR(shape_volume(part) / exact, 1.0, 1e-9);
 }
 
 TEST(SkinHoles, CutFacesAlongTheInnerBoundarysEdgesAreNoHoles) {
@@ -142,12 +139,7 @@ TEST(SkinHoles, HoleOutsideItsFaceIsAnError) {
   // The bottom face z = 0 (same kind of surface, another plane): the hole's outline is not in it.
   TopoDS_Face bottom;
   for (TopExp_Explorer x(skin.inner, TopAbs_FACE); x.More(); x.Next()) {
-    BRepGProp_Face surface(TopoDS::Face(x.Current()));
-    double u0, u1, v0, v1;
-    surface.Bounds(u0, u1, v0, v1);
-    gp_Pnt p;
-    gp_Vec n;
-    surface.Normal(0.5 * (u0 + u1), 0.5 * (v0 + v1), p, n);
+    const auto [p, n] = middle(TopoDS::Face(x.Current()));
     if (std::abs(p.Z()) < 1e-12 && std::abs(n.Z()) > 0.5) bottom = TopoDS::Face(x.Current());
   }
   ASSERT_FALSE(bottom.IsNull());
