@@ -364,6 +364,53 @@ bool caps_disjoint(const Ball& ball, const std::vector<Circle>& exits) {
   return true;
 }
 
+// A built ball's hub: its stumps (the beams `built` says are part of it, with the end at this ball), their exit
+// circles, and its kind: 0 when the circles keep apart (clean), else a core (1: hull model, 2: transversal), with
+// the numbers its core depends on in `extras` (per stump its slope and end radius in ball radii).
+template <class Built>
+HubGeometry hub_geometry(const FlatLattice& f, const std::vector<BeamFrustum>& frustums, std::int64_t i,
+                         const Built& built, std::vector<std::pair<std::int64_t, int>>& stumps) {
+  HubGeometry g;
+  g.ball = f.balls[i];
+  std::vector<double> slopes, end_radii;
+  bool all_tangent = true, all_transversal = true;
+  for (const std::int64_t* e = f.incident_begin(i); e != f.incident_end(i); ++e) {
+    if (!built(*e)) continue;
+    const int end = f.beams[*e].a == i ? 0 : 1;
+    const BeamFrustum& fr = frustums[*e];
+    stumps.emplace_back(*e, end);
+    g.exits.push_back(end == 0 ? fr.circle_a : fr.circle_b);
+    const double r = end == 0 ? f.beams[*e].ra : f.beams[*e].rb;
+    slopes.push_back(end == 0 ? fr.cone.sin_phi : -fr.cone.sin_phi);
+    end_radii.push_back(r / g.ball.radius);
+    all_tangent = all_tangent && r >= g.ball.radius * (1.0 - 1e-12);
+    all_transversal = all_transversal && r < g.ball.radius * (1.0 - 1e-9);
+  }
+  if (!caps_disjoint(g.ball, g.exits)) {
+    if (!all_tangent && !all_transversal)
+      fail_input("hub", "ball " + std::to_string(i) +
+                            " mixes beams tangent to it (hull model) with thinner beams, and their circles overlap");
+    g.kind = all_tangent ? 1 : 2;
+    for (std::size_t s = 0; s < slopes.size(); ++s) g.extras.push_back(slopes[s]), g.extras.push_back(end_radii[s]);
+  }
+  return g;
+}
+
+// The frustums of the lattice with the selection's cut places.
+std::vector<BeamFrustum> selected_frustums(const FlatLattice& f, const BrepSelection& selection) {
+  std::vector<BeamFrustum> frustums = beam_frustums(f);
+  if (!selection.cut_fractions.empty()) {
+    if (static_cast<std::int64_t>(selection.cut_fractions.size()) != f.beam_count())
+      fail_input("selection", "needs one cut fraction per beam");
+    for (std::int64_t e = 0; e < f.beam_count(); ++e) {
+      const double t = selection.cut_fractions[e];
+      if (!(t > 0.0 && t < 1.0)) fail_input("selection", "cut fraction of beam " + std::to_string(e) + " outside (0, 1)");
+      frustums[e].cut_fraction = t;
+    }
+  }
+  return frustums;
+}
+
 gp_Trsf placement_transform(const Ball& ball, const Mat3& m) {
   const double r = ball.radius;
   gp_Trsf t;
@@ -450,7 +497,7 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
     require_memory(faces * kBytesPerFace, "the B-rep of " + std::to_string(faces) + " faces");
   }
   BrepPieces out;
-  const std::vector<BeamFrustum> frustums = beam_frustums(f);
+  const std::vector<BeamFrustum> frustums = selected_frustums(f, selection);
   const std::vector<char> absorbed = absorbed_balls(f, frustums);
   std::vector<char> ball_built(f.ball_count());
   for (std::int64_t i = 0; i < f.ball_count(); ++i) ball_built[i] = selection.balls[i] && !absorbed[i];
@@ -470,34 +517,16 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
     if (!ball_built[i]) continue;
     HubWork h;
     h.ball = i;
-    HubGeometry g;
-    g.ball = f.balls[i];
-    std::vector<double> slopes, end_radii;
-    bool all_tangent = true, all_transversal = true;
-    for (const std::int64_t* e = f.incident_begin(i); e != f.incident_end(i); ++e) {
-      if (beams[*e].kind == BeamKind::None) continue;
-      const int end = f.beams[*e].a == i ? 0 : 1;
-      const BeamFrustum& fr = frustums[*e];
-      h.stumps.emplace_back(*e, end);
-      g.exits.push_back(end == 0 ? fr.circle_a : fr.circle_b);
-      const double r = end == 0 ? f.beams[*e].ra : f.beams[*e].rb;
-      slopes.push_back(end == 0 ? fr.cone.sin_phi : -fr.cone.sin_phi);
-      end_radii.push_back(r / g.ball.radius);
-      all_tangent = all_tangent && r >= g.ball.radius * (1.0 - 1e-12);
-      all_transversal = all_transversal && r < g.ball.radius * (1.0 - 1e-9);
-      EndCircle& ec = beams[*e].end[end];
+    HubGeometry g = hub_geometry(f, frustums, i, [&](std::int64_t e) { return beams[e].kind != BeamKind::None; },
+                                 h.stumps);
+    h.kind = g.kind;
+    for (std::size_t s = 0; s < h.stumps.size(); ++s) {
+      const auto [e, end] = h.stumps[s];
+      EndCircle& ec = beams[e].end[end];
       ec.hub = static_cast<std::int64_t>(hubs.size());
-      ec.slot = static_cast<int>(h.stumps.size()) - 1;
-      ec.circle = g.exits.back();
-      ec.axial = end == 0 ? fr.exit_a : fr.exit_b;
-    }
-    if (!caps_disjoint(g.ball, g.exits)) {
-      if (!all_tangent && !all_transversal)
-        fail_input("hub", "ball " + std::to_string(i) +
-                              " mixes beams tangent to it (hull model) with thinner beams, and their circles overlap");
-      h.kind = all_tangent ? 1 : 2;
-      g.kind = h.kind;
-      for (std::size_t s = 0; s < slopes.size(); ++s) g.extras.push_back(slopes[s]), g.extras.push_back(end_radii[s]);
+      ec.slot = static_cast<int>(s);
+      ec.circle = g.exits[s];
+      ec.axial = end == 0 ? frustums[e].exit_a : frustums[e].exit_b;
     }
     hubs.push_back(std::move(h));
     geometry.push_back(std::move(g));
@@ -789,6 +818,36 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
   out.stats.topology_seconds = seconds_since(topology_start);
   progress.finish();
   return out;
+}
+
+std::vector<double> stump_starts(const FlatLattice& f, const std::vector<BeamFrustum>& frustums,
+                                 const std::vector<char>& beams, std::int64_t ball) {
+  std::vector<std::pair<std::int64_t, int>> stumps;
+  const HubGeometry g =
+      hub_geometry(f, frustums, ball, [&](std::int64_t e) { return beams[e] && frustums[e].exists; }, stumps);
+  std::vector<double> starts(f.degree(ball), std::nan(""));
+  auto slot = [&](std::int64_t e) {
+    return std::find(f.incident_begin(ball), f.incident_end(ball), e) - f.incident_begin(ball);
+  };
+  if (g.kind == 0) {
+    for (const auto& [e, end] : stumps) starts[slot(e)] = end == 0 ? frustums[e].exit_a : frustums[e].exit_b;
+    return starts;
+  }
+  // The collars as the core's build places them (in ball radii; place_collars only looks at angles and
+  // distances, so the world frame scaled to the ball gives what the hub's canonical frame gives).
+  std::vector<CoreStump> core;
+  for (std::size_t s = 0; s < stumps.size(); ++s) {
+    CoreStump st;
+    st.direction = g.exits[s].normal;
+    st.exit = glm::dot(g.exits[s].center - g.ball.center, g.exits[s].normal) / g.ball.radius;
+    st.sin_phi = g.extras[2 * s];
+    st.end_radius = g.extras[2 * s + 1];
+    core.push_back(st);
+  }
+  const std::vector<double> collars =
+      place_collars(core, g.kind == 1 ? CoreKind::Hull : CoreKind::Transversal, kMaxCollarPosition);
+  for (std::size_t s = 0; s < stumps.size(); ++s) starts[slot(stumps[s].first)] = collars[s] * g.ball.radius;
+  return starts;
 }
 
 TopoDS_Shape solids_from_faces(const std::vector<TopoDS_Face>& faces, Progress& progress) {

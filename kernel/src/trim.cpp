@@ -61,6 +61,9 @@ namespace {
 // A hub's bounding ball may come this close (relative to the body's size) to the boundary and still count as
 // clear of it: far below any feature, far above the exact distance's own accuracy.
 constexpr double kClearanceRelative = 1e-9;
+// Places tried for a beam's cut when halfway is not clear of the boundary, as fractions of the way between its
+// stumps' starts: nearest the middle first, never nearer a start than a tenth of the way.
+constexpr double kMovedCutPlaces[] = {0.35, 0.65, 0.2, 0.8, 0.1, 0.9};
 
 enum class HubState : char { Absent, Inside, Outside, Crossing };
 
@@ -291,7 +294,7 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
     inner.emplace(skin->inner, "skin");
     out.skin = skin->skin;
   }
-  const std::vector<BeamFrustum> frustums = beam_frustums(f);
+  std::vector<BeamFrustum> frustums = beam_frustums(f);  // cuts moved below, on beams between boundary hubs
   const std::vector<char> absorbed = absorbed_balls(f, frustums);
   std::vector<std::vector<Piece>> pieces;
   {
@@ -409,6 +412,35 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
     while (cluster_parent[x] != x) x = cluster_parent[x] = cluster_parent[cluster_parent[x]];
     return x;
   };
+  // A cut is clear when its disk keeps off every boundary the Booleans use.
+  auto clear_of_boundaries = [&](const Circle& cut) {
+    for (const SolidBody* b : boundaries) {
+      if (b->distance_lower_bound(cut.center) > cut.radius + clearance) continue;
+      ++stats.exact_distance_tests;
+      if (!(b->exact_distance(cut.center) > cut.radius + clearance)) return false;
+    }
+    return true;
+  };
+  // Where a boundary hub's stumps start (exit circles, or a crowded hub's collars), for the beams its build has.
+  std::vector<double> cut_fractions(f.beam_count(), 0.5);
+  std::unordered_map<std::int64_t, std::vector<double>> starts;
+  auto stump_start = [&](std::int64_t ball, std::int64_t e) {
+    auto found = starts.find(ball);
+    if (found == starts.end()) found = starts.emplace(ball, stump_starts(f, frustums, band_beams, ball)).first;
+    return found->second[std::find(f.incident_begin(ball), f.incident_end(ball), e) - f.incident_begin(ball)];
+  };
+  // A clear place for the cut of beam e between its stumps' starts (kept a tenth of the way off them), or NaN.
+  auto clear_cut_fraction = [&](std::int64_t e) {
+    BeamFrustum fr = frustums[e];
+    const double from = stump_start(f.beams[e].a, e), to = fr.cone.length - stump_start(f.beams[e].b, e);
+    if (!(from < to)) return std::nan("");
+    for (const double u : kMovedCutPlaces) {
+      fr.cut_fraction = (from + u * (to - from) - fr.exit_a) / fr.length();
+      if (fr.cut_fraction > 0.0 && fr.cut_fraction < 1.0 && clear_of_boundaries(fr.cut_circle()))
+        return fr.cut_fraction;
+    }
+    return std::nan("");
+  };
   for (std::int64_t e = 0; e < f.beam_count(); ++e) {
     if (!beam_kept[e] || !band[f.beams[e].a] || !band[f.beams[e].b]) continue;
     split_progress.advance();
@@ -416,21 +448,30 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
       cluster_parent[find(f.beams[e].a)] = find(f.beams[e].b);
       continue;
     }
-    const Circle cut = frustums[e].cut_circle();
-    bool clear = true;
-    for (const SolidBody* b : boundaries) {
-      if (b->distance_lower_bound(cut.center) > cut.radius + clearance) continue;
-      ++stats.exact_distance_tests;
-      clear = clear && b->exact_distance(cut.center) > cut.radius + clearance;
-    }
-    if (clear)
+    if (clear_of_boundaries(frustums[e].cut_circle())) {
       split[e] = 1;
-    else
+      continue;
+    }
+    // Halfway is not clear: another place along the beam may be (a beam crossing the boundary is clear of it
+    // some way off the crossing). Without this, the boundary hubs of a lattice whose beams run near the body's
+    // surface join into one cluster (213 of 298 on the main job's octet lattice clipped by its cylinder): one
+    // Boolean, slow, and failing as a whole where any one of its hubs grazes the surface.
+    const double t = options.move_cuts ? clear_cut_fraction(e) : std::nan("");
+    if (!std::isnan(t)) {
+      frustums[e].cut_fraction = cut_fractions[e] = t;
+      split[e] = 1;
+      ++stats.moved_cuts;
+    } else {
       cluster_parent[find(f.beams[e].a)] = find(f.beams[e].b);
+    }
   }
   // A clear cut inside one cluster stays whole: its two disks would be coincident faces of one Boolean argument.
   for (std::int64_t e = 0; e < f.beam_count(); ++e)
-    if (split[e] && find(f.beams[e].a) == find(f.beams[e].b)) split[e] = 0;
+    if (split[e] && find(f.beams[e].a) == find(f.beams[e].b)) {
+      split[e] = 0;
+      stats.moved_cuts -= cut_fractions[e] != 0.5;
+      frustums[e].cut_fraction = cut_fractions[e] = 0.5;
+    }
   split_progress.finish();
 
   clock = std::chrono::steady_clock::now();
@@ -441,6 +482,7 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
     sel.balls = band;
     sel.beams = band_beams;
     sel.split = split;
+    sel.cut_fractions = cut_fractions;
     sel.seams = seams;
     Progress part(progress, rest_part(kBuildPerElement * band_elements));
     band_pieces = build_brep_pieces(f, sel, cuts, part);
@@ -626,6 +668,7 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
       for (std::int64_t e = 0; e < f.beam_count(); ++e)
         other.beams[e] = band_beams[e] && (other.balls[f.beams[e].a] || other.balls[f.beams[e].b]);
       other.split = split;
+      other.cut_fractions = cut_fractions;
       other.seams = seams == SeamPreference::FewestCrossings ? SeamPreference::MostCrossings
                                                              : SeamPreference::FewestCrossings;
       second_layout = build_brep_pieces(f, other, cuts);

@@ -203,7 +203,8 @@ int child_scale(Counts c, bool check, double skin, double tilt) {
       {"crossing", double(r.stats.crossing_hubs)}, {"relaid", double(r.stats.relaid_out)}, {"retried_clusters", double(r.stats.retried_clusters)},
       {"relaid_clusters", double(r.stats.relaid_clusters)}, {"turned_clusters", double(r.stats.turned_clusters)},
       {"fuzzy_clusters", double(r.stats.fuzzy_clusters)},
-      {"clusters", double(r.stats.band_clusters)}, {"peak_mb", double(peak_rss_mb())}};
+      {"clusters", double(r.stats.band_clusters)}, {"moved_cuts", double(r.stats.moved_cuts)},
+      {"peak_mb", double(peak_rss_mb())}};
   if (!r.stats.pores_reason.empty()) std::fprintf(stderr, "through the pores: %s\n", r.stats.pores_reason.c_str());
   if (!r.stats.relaid_reason.empty()) std::fprintf(stderr, "laid out again: %s\n", r.stats.relaid_reason.c_str());
   if (check) {

@@ -7,6 +7,7 @@
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepAlgoAPI_Common.hxx>
 #include <BRepBuilderAPI_Transform.hxx>
 #include <BRep_Builder.hxx>
 #include <TopoDS_Compound.hxx>
@@ -26,6 +27,7 @@
 #include "steady/progress.hpp"
 #include "steady/step_assembly.hpp"
 #include "steady/trim.hpp"
+#include "occ_reference.hpp"
 #include "test_lattices.hpp"
 
 namespace steady {
@@ -110,6 +112,85 @@ TEST(Trim, ClipIntoBoxMatchesClosedForm) {
     EXPECT_GT(r.stats.crossing_hubs, 0);
     EXPECT_GT(r.stats.outside_hubs, 0);
   }
+}
+
+TEST(Trim, CutsPlacedAnywhereBeyondTheStumpsStarts) {
+  // Two crowded hubs (beams on a small ball: their exit circles overlap), built from cores with collars, and the
+  // beam between them cut in two halves glued along their shared cut circle. The cut may go anywhere past the
+  // starts stump_starts reports: just past them the two hubs build one valid solid with the volume they have
+  // when cut halfway; just before a crowded hub's collar the builder refuses the cut.
+  const FlatLattice f = grid_lattice(3, 0.13);
+  const std::vector<BeamFrustum> frustums = beam_frustums(f);
+  const std::int64_t e = 0;  // from ball 0 to ball 1, along x
+  const std::int64_t a = f.beams[e].a, b = f.beams[e].b;
+  BrepSelection sel;
+  sel.balls.assign(f.ball_count(), 0);
+  sel.balls[a] = sel.balls[b] = 1;
+  sel.beams.assign(f.beam_count(), 0);
+  for (const std::int64_t ball : {a, b})
+    for (const std::int64_t* x = f.incident_begin(ball); x != f.incident_end(ball); ++x) sel.beams[*x] = 1;
+  auto start = [&](std::int64_t ball) {
+    const std::vector<double> starts = stump_starts(f, frustums, sel.beams, ball);
+    return starts[std::find(f.incident_begin(ball), f.incident_end(ball), e) - f.incident_begin(ball)];
+  };
+  const double from = start(a), to = frustums[e].cone.length - start(b);
+  ASSERT_GT(from, frustums[e].exit_a * 1.01) << "the hub is not crowded: its stump starts at its exit circle";
+  ASSERT_LT(from, to);
+  auto solid_with_cut_at = [&](double x) {
+    BrepSelection s = sel;
+    s.split.assign(f.beam_count(), 0);
+    s.open_cuts.assign(f.beam_count(), 0);
+    s.split[e] = s.open_cuts[e] = 1;
+    s.cut_fractions.assign(f.beam_count(), 0.5);
+    s.cut_fractions[e] = (x - frustums[e].exit_a) / frustums[e].length();
+    CutEdges cuts;
+    return solids_from_faces(build_brep_pieces(f, s, cuts).faces);
+  };
+  // (Adaptive integration: the cores' faces are B-splines.)
+  const double halfway = test::occ_properties(solid_with_cut_at(frustums[e].cut_position())).volume;
+  for (const double x : {from + 0.01 * (to - from), to - 0.01 * (to - from)}) {
+    const TopoDS_Shape solid = solid_with_cut_at(x);
+    EXPECT_TRUE(is_valid(solid));
+    EXPECT_EQ(solid_count(solid), 1);
+    EXPECT_NEAR(test::occ_properties(solid).volume / halfway, 1.0, 1e-9);
+  }
+  EXPECT_THROW(solid_with_cut_at(from - 0.01 * (to - from)), InvalidInput);
+  EXPECT_THROW(solid_with_cut_at(to + 0.01 * (to - from)), InvalidInput);
+}
+
+TEST(Trim, CutsMovedOffAnObliqueBoundaryKeepClustersSmall) {
+  // A box turned about two axes cuts the grid's beams obliquely: halfway along many beams between two boundary
+  // hubs the cut's disk meets the box's faces, and the cut moves along the beam to a clear place instead of
+  // joining the two hubs in one Boolean. The twin: one Common of the whole lattice (built without a Boolean) with
+  // the box; and the same trim with the cuts kept halfway.
+  const FlatLattice f = grid_lattice(6);
+  gp_Trsf turn, tilt;
+  turn.SetRotation(gp_Ax1(gp_Pnt(2.5, 2.5, 2.5), gp_Dir(0, 0, 1)), 0.5);
+  tilt.SetRotation(gp_Ax1(gp_Pnt(2.5, 2.5, 2.5), gp_Dir(1, 0, 0)), 0.3);
+  const TopoDS_Shape body = BRepBuilderAPI_Transform(box(0.7, 4.3), tilt * turn, true).Shape();
+  const TrimResult r = trim_lattice(f, body, {});
+  TrimOptions halfway;
+  halfway.move_cuts = false;
+  const TrimResult h = trim_lattice(f, body, halfway);
+  // (Valid, in as many solids as the twin: the box's corners cut stumps off their hubs.)
+  EXPECT_TRUE(is_valid(r.part)) << validity_report(r.part);
+  EXPECT_TRUE(is_valid(h.part)) << validity_report(h.part);
+  EXPECT_GT(r.stats.moved_cuts, 0);
+  EXPECT_EQ(h.stats.moved_cuts, 0);
+  EXPECT_EQ(r.stats.crossing_hubs, h.stats.crossing_hubs);
+  EXPECT_GT(r.stats.band_clusters, h.stats.band_clusters);
+  const TopoDS_Shape whole = build_lattice_brep(f).shape;
+  BRepAlgoAPI_Common twin(whole, body);
+  ASSERT_TRUE(twin.IsDone());
+  ASSERT_TRUE(is_valid(twin.Shape()));
+  EXPECT_EQ(solid_count(r.part), solid_count(twin.Shape()));
+  EXPECT_EQ(solid_count(h.part), solid_count(twin.Shape()));
+  EXPECT_NEAR(shape_volume(r.part) / shape_volume(twin.Shape()), 1.0, 1e-7);
+  EXPECT_NEAR(shape_volume(h.part) / shape_volume(twin.Shape()), 1.0, 1e-7);
+  std::printf("[ report ] turned box: %lld crossing hubs in %lld clusters with %lld cuts moved (%lld clusters with "
+              "the cuts halfway); volume %.9f, one Common of the whole lattice %.9f\n",
+              (long long)r.stats.crossing_hubs, (long long)r.stats.band_clusters, (long long)r.stats.moved_cuts,
+              (long long)h.stats.band_clusters, shape_volume(r.part), shape_volume(twin.Shape()));
 }
 
 TEST(Trim, WholeKeepsOnlyHubsInsideAndNeverCuts) {

@@ -18,11 +18,14 @@ struct BeamFrustum {
   double exit_a = 0.0;          // axial position of the exit circle at a, from node a's center
   double exit_b = 0.0;          // axial position of the exit circle at b, from node b's center (toward a)
   Circle circle_a, circle_b;    // exit circles; normals point away from their node along the beam
+  // Where along the frustum (0: exit plane a, 1: exit plane b) the B-rep cuts the beam between two separately
+  // built pieces. Halfway by default: a place that commutes with similarities and lies outside both nodes.
+  // Trimming moves it on beams between two boundary hubs, to a place clear of the body's boundary.
+  double cut_fraction = 0.5;
   // Axial length of the frustum between the two exit planes.
   double length() const { return cone.length - exit_a - exit_b; }
-  // Where the B-rep cuts a beam between two separately built pieces: halfway between the exit planes, a place
-  // that commutes with similarities and always lies outside both nodes. Axial position from node a's center.
-  double cut_position() const { return 0.5 * (exit_a + cone.length - exit_b); }
+  // The cut's axial position from node a's center.
+  double cut_position() const { return exit_a + cut_fraction * length(); }
   // The cut circle, normal along the beam (from a to b).
   Circle cut_circle() const;
 };

@@ -21,6 +21,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "steady/beam_frustum.hpp"
 #include "steady/flat_lattice.hpp"
 #include "steady/lattice.hpp"
 #include "steady/progress.hpp"
@@ -52,6 +53,7 @@ struct BrepSelection {
   std::vector<char> split;      // per beam (or empty): build it as two halves meeting at its cut, even when both
                                 // its balls are built (each half closed by its own disk, or open)
   std::vector<char> open_cuts;  // per beam (or empty): leave its cut open, for gluing; other cuts get a disk
+  std::vector<double> cut_fractions;  // per beam (or empty: halfway): where its cut lies, BeamFrustum::cut_fraction
   SeamPreference seams = SeamPreference::FewestCrossings;  // where spherical faces put their seams
   static BrepSelection everything(const FlatLattice& lattice);
 };
@@ -84,6 +86,12 @@ struct BrepPieces {
 // build succeeds: Cancelled or an error leaves it as it was).
 BrepPieces build_brep_pieces(const FlatLattice& lattice, const BrepSelection& selection, CutEdges& cut_edges,
                              Progress& progress = no_progress());
+
+// Where the stumps of a ball's hub start when it is built with the beams `beams` says (per beam): per incident
+// beam, the axial distance from the ball's center to its first circle (the exit circle on a clean hub, the collar
+// on a crowded one), NaN for beams not built. A beam's cut must lie beyond the circles at both its ends.
+std::vector<double> stump_starts(const FlatLattice& lattice, const std::vector<BeamFrustum>& frustums,
+                                 const std::vector<char>& beams, std::int64_t ball);
 
 // Groups faces into connected shells (faces sharing an edge), one solid per shell: a TopoDS_Solid when there is
 // one, otherwise a compound of solids (a lattice may have several components, lone balls for instance).

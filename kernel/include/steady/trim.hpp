@@ -35,6 +35,8 @@ struct TrimOptions {
   double skin = 0.0;          // wall thickness; 0: no skin
   bool unite_skin = true;     // false: return the skin and the trimmed lattice as separate shapes
   bool verify_booleans = true;  // check the Booleans' output with BRepCheck (an error instead of a bad solid)
+  bool move_cuts = true;  // cut beams between crossing hubs off their middle where that keeps the hubs in
+                          // separate clusters (false: only halfway, for comparisons)
 };
 
 struct TrimStats {
@@ -42,6 +44,8 @@ struct TrimStats {
   std::int64_t exact_distance_tests = 0;  // hubs the triangulation could not decide
   std::int64_t removed_beams = 0;         // dangling beams removed
   std::int64_t band_clusters = 0;         // independent Booleans the crossing hubs were split into
+  std::int64_t moved_cuts = 0;            // beams between crossing hubs cut off their middle, where the
+                                          // boundary leaves room, to keep their hubs in separate clusters
   std::int64_t retried_clusters = 0;      // clusters whose first Common failed, clipped by a retry; of those:
   std::int64_t relaid_clusters = 0;       //   with their spheres laid out the other way
   std::int64_t turned_clusters = 0;       //   in a turned frame
