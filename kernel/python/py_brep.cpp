@@ -140,7 +140,8 @@ void bind_brep(py::module_& m) {
       "callable progress(fraction) called on this thread about every 0.1 s with a growing fraction in [0, 1] "
       "(1 at the end); returning False cancels: steadylattice.Cancelled is raised soon after (an exception the "
       "callable raises is raised instead), and nothing has changed. stats: None or a dict, filled with how the trim "
-      "went: hubs inside/outside/crossing, band_clusters (local Booleans), moved_cuts (beams cut off their middle to keep clusters apart), retried_clusters and of those "
+      "went: hubs inside/outside/crossing, band_clusters (local Booleans), moved_cuts (beams cut off their middle "
+      "to keep clusters apart), retried_clusters and of those "
       "relaid_/turned_/fuzzy_clusters (fuzzy: clipped with a tolerance of 1e-4 to 1e-3 of the cluster's size, "
       "exact only to that), holed_clusters (glued to the skin with no Boolean), relaid_out and union_through_pores "
       "with their reasons, faces, boolean_seconds, union_seconds.");

@@ -423,6 +423,7 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
   };
   // Where a boundary hub's stumps start (exit circles, or a crowded hub's collars), for the beams its build has.
   std::vector<double> cut_fractions(f.beam_count(), 0.5);
+  std::vector<char> moved(f.beam_count(), 0);
   std::unordered_map<std::int64_t, std::vector<double>> starts;
   auto stump_start = [&](std::int64_t ball, std::int64_t e) {
     auto found = starts.find(ball);
@@ -459,8 +460,7 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
     const double t = options.move_cuts ? clear_cut_fraction(e) : std::nan("");
     if (!std::isnan(t)) {
       frustums[e].cut_fraction = cut_fractions[e] = t;
-      split[e] = 1;
-      ++stats.moved_cuts;
+      split[e] = moved[e] = 1;
     } else {
       cluster_parent[find(f.beams[e].a)] = find(f.beams[e].b);
     }
@@ -468,10 +468,10 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
   // A clear cut inside one cluster stays whole: its two disks would be coincident faces of one Boolean argument.
   for (std::int64_t e = 0; e < f.beam_count(); ++e)
     if (split[e] && find(f.beams[e].a) == find(f.beams[e].b)) {
-      split[e] = 0;
-      stats.moved_cuts -= cut_fractions[e] != 0.5;
+      split[e] = moved[e] = 0;
       frustums[e].cut_fraction = cut_fractions[e] = 0.5;
     }
+  stats.moved_cuts = std::count(moved.begin(), moved.end(), 1);
   split_progress.finish();
 
   clock = std::chrono::steady_clock::now();
