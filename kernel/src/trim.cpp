@@ -941,30 +941,44 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
 
 TrimResult trim_lattice(const FlatLattice& f, const TopoDS_Shape& body_shape, const TrimOptions& options,
                         Progress& progress) {
-  try {
-    return trim_attempt(f, body_shape, options, SeamPreference::FewestCrossings, progress);
-  } catch (const Cancelled&) {
-    throw;
-  } catch (const std::runtime_error& first) {
-    // OpenCASCADE's Booleans failed on the boundary hubs (detected: see collect). Their outcome depends on how the
-    // spheres are parametrized (where a seam or pole sits relative to the body's surface): once more with the
-    // boundary hubs' spheres laid out the other way (measured: a cylinder tilted by 0.3 rad that failed the first
-    // layout trims with the second). The progress bar does not go back; the retry reports nothing.
-    progress.check();
-    if (std::getenv("STEADY_TRIM_VERBOSE")) std::fprintf(stderr, "trim: laid out again: %s\n", first.what());
+  // OpenCASCADE's Booleans may fail on the boundary hubs (detected: see collect); their outcome depends on how the
+  // spheres are parametrized (where a seam or pole sits relative to the body's surface) and on how the hubs are
+  // grouped into clusters. The attempts, in order: the first as asked; then, when cuts were moved, every cut
+  // halfway (larger clusters: other numbers in OpenCASCADE, and fuzzy retries scaled to a larger cluster; measured:
+  // at 101,343 beams in a cylinder along the beams, a lone hub whose beam the wall grazes by 0.003 failed every
+  // per-cluster retry, and clips within a cluster of several); then the spheres laid out the other way (measured:
+  // a cylinder tilted by 0.3 rad that failed the first layout trims with the second). The progress bar does not go
+  // back; the later attempts report nothing.
+  struct Attempt {
+    SeamPreference seams;
+    bool move_cuts;
+  };
+  std::vector<Attempt> attempts = {{SeamPreference::FewestCrossings, options.move_cuts}};
+  if (options.move_cuts) attempts.push_back({SeamPreference::FewestCrossings, false});
+  attempts.push_back({SeamPreference::MostCrossings, false});
+  std::string failures;
+  for (std::size_t k = 0; k < attempts.size(); ++k) {
+    TrimOptions o = options;
+    o.move_cuts = attempts[k].move_cuts;
     try {
-      TrimResult retried = trim_attempt(f, body_shape, options, SeamPreference::MostCrossings, no_progress());
+      if (k == 0) return trim_attempt(f, body_shape, o, attempts[k].seams, progress);
+      TrimResult retried = trim_attempt(f, body_shape, o, attempts[k].seams, no_progress());
       retried.stats.relaid_out = true;
-      retried.stats.relaid_reason = first.what();
+      retried.stats.relaid_reason = failures;
       progress.finish();
       return retried;
-    } catch (const std::runtime_error& second) {
-      if (dynamic_cast<const Cancelled*>(&second)) throw;
-      throw std::runtime_error(std::string(first.what()) + "; with the spheres laid out again: " + second.what() +
-                               ". OpenCASCADE's Booleans fail where the body's surface grazes the lattice (runs "
-                               "along a beam, or nearly touches a ball): moving or resizing the body slightly helps");
+    } catch (const Cancelled&) {
+      throw;
+    } catch (const std::runtime_error& e) {
+      progress.check();
+      if (std::getenv("STEADY_TRIM_VERBOSE"))
+        std::fprintf(stderr, "trim: attempt %zu of %zu failed: %s\n", k + 1, attempts.size(), e.what());
+      failures += (failures.empty() ? "" : "; then ") + std::string(e.what());
     }
   }
+  throw std::runtime_error(failures +
+                           ". OpenCASCADE's Booleans fail where the body's surface grazes the lattice (runs along a "
+                           "beam, or nearly touches a ball): moving or resizing the body slightly helps");
 }
 
 }  // namespace steady

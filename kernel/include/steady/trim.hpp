@@ -53,8 +53,9 @@ struct TrimStats {
   std::int64_t holed_clusters = 0;        // with a skin: clusters glued to it by holes in its inner faces, no
                                           // Boolean (the others by a glued Fuse)
   std::int64_t core_hubs = 0, distinct_cores = 0;  // crowded hubs built from cores, and the cores built
-  bool relaid_out = false;                // the first attempt failed as a whole; everything was laid out again
-  std::string relaid_reason;              //   why the first attempt failed
+  bool relaid_out = false;                // the first attempt failed as a whole; a later one (every cut halfway,
+                                          // or the spheres laid out the other way) made the part
+  std::string relaid_reason;              //   why the earlier attempts failed
   std::int64_t faces = 0;
   double classify_seconds = 0.0, build_seconds = 0.0, boolean_seconds = 0.0, assemble_seconds = 0.0;
   double union_seconds = 0.0;      // of boolean_seconds, the union with the skin
