@@ -969,6 +969,8 @@ TrimResult trim_lattice(const FlatLattice& f, const TopoDS_Shape& body_shape, co
       return retried;
     } catch (const Cancelled&) {
       throw;
+    } catch (const ResourceLimit&) {
+      throw;  // too large for memory: no other attempt fits either
     } catch (const std::runtime_error& e) {
       progress.check();
       if (std::getenv("STEADY_TRIM_VERBOSE"))
