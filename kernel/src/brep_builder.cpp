@@ -396,6 +396,24 @@ HubGeometry hub_geometry(const FlatLattice& f, const std::vector<BeamFrustum>& f
   return g;
 }
 
+// A crowded hub's stumps for its core, from its caps (in the hub's canonical frame, or in the world frame scaled
+// to the ball: the core's collars depend on angles and distances only) and the slopes and end radii in its
+// geometry's extras.
+std::vector<CoreStump> core_stumps(const std::vector<SphereCap>& caps, const std::vector<double>& extras) {
+  std::vector<CoreStump> stumps;
+  for (std::size_t k = 0; k < caps.size(); ++k) {
+    CoreStump st;
+    st.direction = caps[k].direction;
+    st.exit = caps[k].exit;
+    st.sin_phi = extras[2 * k];
+    st.end_radius = extras[2 * k + 1];
+    stumps.push_back(st);
+  }
+  return stumps;
+}
+
+CoreKind core_kind(int hub_kind) { return hub_kind == 1 ? CoreKind::Hull : CoreKind::Transversal; }
+
 // The frustums of the lattice with the selection's cut places.
 std::vector<BeamFrustum> selected_frustums(const FlatLattice& f, const BrepSelection& selection) {
   std::vector<BeamFrustum> frustums = beam_frustums(f);
@@ -555,17 +573,8 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
       progress.advance(kShapeUnits);
       return;
     }
-    std::vector<CoreStump> stumps;
-    const std::vector<SphereCap>& caps = catalog.shapes[s];
-    for (std::size_t k = 0; k < caps.size(); ++k) {
-      CoreStump st;
-      st.direction = caps[k].direction;
-      st.exit = caps[k].exit;
-      st.sin_phi = geometry[rep].extras[2 * k];
-      st.end_radius = geometry[rep].extras[2 * k + 1];
-      stumps.push_back(st);
-    }
-    const CoreKind kind = hubs[rep].kind == 1 ? CoreKind::Hull : CoreKind::Transversal;
+    const std::vector<CoreStump> stumps = core_stumps(catalog.shapes[s], geometry[rep].extras);
+    const CoreKind kind = core_kind(hubs[rep].kind);
     w.core = build_hub_core(stumps, kind, place_collars(stumps, kind, kMaxCollarPosition));
     progress.advance(kShapeUnits);
   });
@@ -826,27 +835,16 @@ std::vector<double> stump_starts(const FlatLattice& f, const std::vector<BeamFru
   const HubGeometry g =
       hub_geometry(f, frustums, ball, [&](std::int64_t e) { return beams[e] && frustums[e].exists; }, stumps);
   std::vector<double> starts(f.degree(ball), std::nan(""));
-  auto slot = [&](std::int64_t e) {
-    return std::find(f.incident_begin(ball), f.incident_end(ball), e) - f.incident_begin(ball);
-  };
   if (g.kind == 0) {
-    for (const auto& [e, end] : stumps) starts[slot(e)] = end == 0 ? frustums[e].exit_a : frustums[e].exit_b;
+    for (const auto& [e, end] : stumps)
+      starts[f.incident_slot(ball, e)] = end == 0 ? frustums[e].exit_a : frustums[e].exit_b;
     return starts;
   }
-  // The collars as the core's build places them (in ball radii; place_collars only looks at angles and
-  // distances, so the world frame scaled to the ball gives what the hub's canonical frame gives).
-  std::vector<CoreStump> core;
-  for (std::size_t s = 0; s < stumps.size(); ++s) {
-    CoreStump st;
-    st.direction = g.exits[s].normal;
-    st.exit = glm::dot(g.exits[s].center - g.ball.center, g.exits[s].normal) / g.ball.radius;
-    st.sin_phi = g.extras[2 * s];
-    st.end_radius = g.extras[2 * s + 1];
-    core.push_back(st);
-  }
+  // The collars as the core's build places them (in ball radii), from the caps in the world frame.
   const std::vector<double> collars =
-      place_collars(core, g.kind == 1 ? CoreKind::Hull : CoreKind::Transversal, kMaxCollarPosition);
-  for (std::size_t s = 0; s < stumps.size(); ++s) starts[slot(stumps[s].first)] = collars[s] * g.ball.radius;
+      place_collars(core_stumps(canonical_caps(g, Mat3(1.0)), g.extras), core_kind(g.kind), kMaxCollarPosition);
+  for (std::size_t s = 0; s < stumps.size(); ++s)
+    starts[f.incident_slot(ball, stumps[s].first)] = collars[s] * g.ball.radius;
   return starts;
 }
 

@@ -422,13 +422,13 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
     return true;
   };
   // Where a boundary hub's stumps start (exit circles, or a crowded hub's collars), for the beams its build has.
-  std::vector<double> cut_fractions(f.beam_count(), 0.5);
+  // (The cuts' places are kept in `frustums`; `moved` marks the beams whose cut left the middle.)
   std::vector<char> moved(f.beam_count(), 0);
   std::unordered_map<std::int64_t, std::vector<double>> starts;
   auto stump_start = [&](std::int64_t ball, std::int64_t e) {
     auto found = starts.find(ball);
     if (found == starts.end()) found = starts.emplace(ball, stump_starts(f, frustums, band_beams, ball)).first;
-    return found->second[std::find(f.incident_begin(ball), f.incident_end(ball), e) - f.incident_begin(ball)];
+    return found->second[f.incident_slot(ball, e)];
   };
   // A clear place for the cut of beam e between its stumps' starts (kept a tenth of the way off them), or NaN.
   auto clear_cut_fraction = [&](std::int64_t e) {
@@ -459,7 +459,7 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
     // Boolean, slow, and failing as a whole where any one of its hubs grazes the surface.
     const double t = options.move_cuts ? clear_cut_fraction(e) : std::nan("");
     if (!std::isnan(t)) {
-      frustums[e].cut_fraction = cut_fractions[e] = t;
+      frustums[e].cut_fraction = t;
       split[e] = moved[e] = 1;
     } else {
       cluster_parent[find(f.beams[e].a)] = find(f.beams[e].b);
@@ -469,9 +469,11 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
   for (std::int64_t e = 0; e < f.beam_count(); ++e)
     if (split[e] && find(f.beams[e].a) == find(f.beams[e].b)) {
       split[e] = moved[e] = 0;
-      frustums[e].cut_fraction = cut_fractions[e] = 0.5;
+      frustums[e].cut_fraction = 0.5;
     }
   stats.moved_cuts = std::count(moved.begin(), moved.end(), 1);
+  std::vector<double> cut_fractions(f.beam_count());  // for the builds of the boundary hubs
+  for (std::int64_t e = 0; e < f.beam_count(); ++e) cut_fractions[e] = frustums[e].cut_fraction;
   split_progress.finish();
 
   clock = std::chrono::steady_clock::now();

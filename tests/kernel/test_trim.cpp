@@ -133,7 +133,7 @@ TEST(Trim, CutsPlacedAnywhereBeyondTheStumpsStarts) {
     for (const std::int64_t* x = f.incident_begin(ball); x != f.incident_end(ball); ++x) sel.beams[*x] = 1;
   auto start = [&](std::int64_t ball) {
     const std::vector<double> starts = stump_starts(f, frustums, sel.beams, ball);
-    return starts[std::find(f.incident_begin(ball), f.incident_end(ball), e) - f.incident_begin(ball)];
+    return starts[f.incident_slot(ball, e)];
   };
   const double from = start(a), to = frustums[e].cone.length - start(b);
   ASSERT_GT(from, frustums[e].exit_a * 1.01) << "the hub is not crowded: its stump starts at its exit circle";

@@ -2,6 +2,7 @@
 // The explicit list of a lattice's balls and beams with their incidence: what the B-rep builder, the clean
 // check and trimming iterate over. It is built once (in parallel) from a Lattice and costs 48 bytes per ball
 // plus 48 per beam; indices are the lattice's stable ball and beam indices.
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -30,6 +31,10 @@ struct FlatLattice {
   std::int64_t degree(std::int64_t ball) const { return incidence_offsets[ball + 1] - incidence_offsets[ball]; }
   const std::int64_t* incident_begin(std::int64_t ball) const { return incidence.data() + incidence_offsets[ball]; }
   const std::int64_t* incident_end(std::int64_t ball) const { return incidence.data() + incidence_offsets[ball + 1]; }
+  // Where `beam` is among the beams incident to `ball` (degree(ball) when it is not one of them).
+  std::int64_t incident_slot(std::int64_t ball, std::int64_t beam) const {
+    return std::find(incident_begin(ball), incident_end(ball), beam) - incident_begin(ball);
+  }
   // The node ball at the other end of `beam`, seen from `ball`.
   std::int64_t other_ball(std::int64_t beam, std::int64_t ball) const {
     return beams[beam].a == ball ? beams[beam].b : beams[beam].a;

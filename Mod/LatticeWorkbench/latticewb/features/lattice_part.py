@@ -94,7 +94,8 @@ def report_trim(label, stats):
             "%s: %d boundary cluster(s) clipped exactly on a second try (other layout or turned frame)\n"
             % (label, retried))
     if stats["relaid_out"]:
-        FreeCAD.Console.PrintMessage("%s: trimmed on a later attempt, the first having failed (%s)\n" % (label, stats["relaid_reason"]))
+        FreeCAD.Console.PrintMessage("%s: trimmed on a later attempt, the first having failed (%s)\n"
+                                     % (label, stats["relaid_reason"]))
     if stats["union_through_pores"]:
         FreeCAD.Console.PrintMessage("%s: the union with the skin went through the pores (%s)\n"
                                      % (label, stats["pores_reason"]))
