@@ -831,6 +831,10 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
 
 std::vector<double> stump_starts(const FlatLattice& f, const std::vector<BeamFrustum>& frustums,
                                  const std::vector<char>& beams, std::int64_t ball) {
+  if (static_cast<std::int64_t>(frustums.size()) != f.beam_count() ||
+      static_cast<std::int64_t>(beams.size()) != f.beam_count())
+    fail_input("beams", "stump_starts needs one frustum and one flag per beam");
+  if (ball < 0 || ball >= f.ball_count()) fail_input("ball", std::to_string(ball) + " is not a ball of the lattice");
   std::vector<std::pair<std::int64_t, int>> stumps;
   const HubGeometry g =
       hub_geometry(f, frustums, ball, [&](std::int64_t e) { return beams[e] && frustums[e].exists; }, stumps);

@@ -158,6 +158,9 @@ TEST(Trim, CutsPlacedAnywhereBeyondTheStumpsStarts) {
   }
   EXPECT_THROW(solid_with_cut_at(from - 0.01 * (to - from)), InvalidInput);
   EXPECT_THROW(solid_with_cut_at(to + 0.01 * (to - from)), InvalidInput);
+  // Arguments that do not fit the lattice are named, not read past.
+  EXPECT_THROW(stump_starts(f, frustums, std::vector<char>(3, 1), a), InvalidInput);
+  EXPECT_THROW(stump_starts(f, frustums, sel.beams, f.ball_count()), InvalidInput);
 }
 
 TEST(Trim, CutsMovedOffAnObliqueBoundaryKeepClustersSmall) {
