@@ -5,10 +5,10 @@
 
 #include <string>
 
-#include "steady/frame.hpp"
-#include "steady/progress.hpp"
-#include "steady/lattice.hpp"
-#include "steady/vec.hpp"
+#include "steady/core/frame.hpp"
+#include "steady/core/progress.hpp"
+#include "steady/lattice/lattice.hpp"
+#include "steady/core/vec.hpp"
 
 namespace steadypy {
 

@@ -1,9 +1,9 @@
 // The Python module `steadylattice`: the steady kernel for scripts, tests and the FreeCAD workbench.
 #include <pybind11/pybind11.h>
 
-#include "steady/errors.hpp"
-#include "steady/lattice_io.hpp"
-#include "steady/progress.hpp"
+#include "steady/core/errors.hpp"
+#include "steady/lattice/lattice_io.hpp"
+#include "steady/core/progress.hpp"
 
 namespace steadypy {
 namespace py = pybind11;

@@ -5,13 +5,13 @@
 #include <pybind11/stl.h>
 
 #include "convert.hpp"
-#include "steady/brep_io.hpp"
-#include "steady/clean_check.hpp"
-#include "steady/flat_lattice.hpp"
-#include "steady/lattice.hpp"
-#include "steady/lattice_part.hpp"
-#include "steady/step_assembly.hpp"
-#include "steady/trim.hpp"
+#include "steady/brep/brep_io.hpp"
+#include "steady/query/clean_check.hpp"
+#include "steady/lattice/flat_lattice.hpp"
+#include "steady/lattice/lattice.hpp"
+#include "steady/brep/lattice_part.hpp"
+#include "steady/brep/step_assembly.hpp"
+#include "steady/brep/trim.hpp"
 
 namespace steadypy {
 

@@ -5,9 +5,9 @@
 #include <pybind11/stl.h>
 
 #include "convert.hpp"
-#include "steady/lattice.hpp"
-#include "steady/lattice_io.hpp"
-#include "steady/memory_budget.hpp"
+#include "steady/lattice/lattice.hpp"
+#include "steady/lattice/lattice_io.hpp"
+#include "steady/core/memory_budget.hpp"
 
 namespace steadypy {
 

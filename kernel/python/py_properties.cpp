@@ -5,9 +5,9 @@
 #include <pybind11/stl.h>
 
 #include "convert.hpp"
-#include "steady/hub_overlaps.hpp"
-#include "steady/lattice_properties.hpp"
-#include "steady/radius_scaling.hpp"
+#include "steady/query/hub_overlaps.hpp"
+#include "steady/properties/lattice_properties.hpp"
+#include "steady/properties/radius_scaling.hpp"
 
 namespace steadypy {
 

@@ -11,11 +11,12 @@
 #include <unordered_map>
 
 #include "convert.hpp"
-#include "steady/errors.hpp"
-#include "steady/filtered_lattice.hpp"
-#include "steady/lattice_query.hpp"
-#include "steady/memory_budget.hpp"
-#include "steady/queries.hpp"
+#include "steady/core/errors.hpp"
+#include "steady/query/filtered_lattice.hpp"
+#include "steady/brep/body_filter.hpp"
+#include "steady/query/lattice_query.hpp"
+#include "steady/core/memory_budget.hpp"
+#include "steady/query/queries.hpp"
 
 namespace steadypy {
 

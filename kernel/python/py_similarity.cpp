@@ -5,9 +5,9 @@
 #include <pybind11/stl.h>
 
 #include "convert.hpp"
-#include "steady/lattice_io.hpp"
-#include "steady/similarity.hpp"
-#include "steady/similarity2d.hpp"
+#include "steady/lattice/lattice_io.hpp"
+#include "steady/core/similarity.hpp"
+#include "steady/core/similarity2d.hpp"
 
 namespace steadypy {
 

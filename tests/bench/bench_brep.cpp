@@ -33,11 +33,11 @@
 #include <string>
 #include <vector>
 
-#include "steady/beam_frustum.hpp"
-#include "steady/brep_builder.hpp"
-#include "steady/brep_io.hpp"
-#include "steady/flat_lattice.hpp"
-#include "steady/trim.hpp"
+#include "steady/lattice/beam_frustum.hpp"
+#include "steady/brep/brep_builder.hpp"
+#include "steady/brep/brep_io.hpp"
+#include "steady/lattice/flat_lattice.hpp"
+#include "steady/brep/trim.hpp"
 
 using namespace steady;
 

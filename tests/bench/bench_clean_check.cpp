@@ -7,8 +7,8 @@
 #include <cstring>
 #include <vector>
 
-#include "steady/clean_check.hpp"
-#include "steady/flat_lattice.hpp"
+#include "steady/query/clean_check.hpp"
+#include "steady/lattice/flat_lattice.hpp"
 
 using namespace steady;
 

@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "bench_common.hpp"
-#include "steady/lattice.hpp"
+#include "steady/lattice/lattice.hpp"
 
 using namespace steady;
 

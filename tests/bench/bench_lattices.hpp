@@ -19,7 +19,7 @@
 #include <sys/resource.h>
 #include <time.h>
 
-#include "steady/lattice.hpp"
+#include "steady/lattice/lattice.hpp"
 
 namespace bench {
 

@@ -9,9 +9,9 @@
 #include <string>
 
 #include "bench_common.hpp"
-#include "steady/hub_overlaps.hpp"
-#include "steady/lattice_properties.hpp"
-#include "steady/radius_scaling.hpp"
+#include "steady/query/hub_overlaps.hpp"
+#include "steady/properties/lattice_properties.hpp"
+#include "steady/properties/radius_scaling.hpp"
 
 using namespace steady;
 

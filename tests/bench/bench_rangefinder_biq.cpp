@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "bench_lattices.hpp"
-#include "steady/lattice_query.hpp"
+#include "steady/query/lattice_query.hpp"
 
 using namespace bench;
 

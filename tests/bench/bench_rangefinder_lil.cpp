@@ -10,7 +10,7 @@
 #include <memory>
 
 #include "bench_lattices.hpp"
-#include "steady/filtered_lattice.hpp"
+#include "steady/query/filtered_lattice.hpp"
 
 using namespace bench;
 

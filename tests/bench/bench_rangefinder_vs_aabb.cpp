@@ -12,8 +12,8 @@
 #include <unistd.h>
 
 #include "bench_lattices.hpp"
-#include "steady/interference.hpp"
-#include "steady/lattice_query.hpp"
+#include "steady/query/interference.hpp"
+#include "steady/query/lattice_query.hpp"
 
 using namespace bench;
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;

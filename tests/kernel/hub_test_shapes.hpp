@@ -3,7 +3,7 @@
 // (ball, plus each beam's convex hull of two balls cut at the mid-plane) with nothing shared with the kernel.
 #include <random>
 
-#include "steady/hub_properties.hpp"
+#include "steady/properties/hub_properties.hpp"
 #include "test_support.hpp"
 
 namespace steady::test {

@@ -3,7 +3,7 @@
 // compared with the balls), of every kind, with borders, both beam models and omitted nodes.
 #include <random>
 
-#include "steady/lattice.hpp"
+#include "steady/lattice/lattice.hpp"
 #include "test_support.hpp"
 
 namespace steady::test {

@@ -17,7 +17,7 @@
 #include <optional>
 #include <vector>
 
-#include "steady/hub_properties.hpp"
+#include "steady/properties/hub_properties.hpp"
 #include "test_support.hpp"
 
 namespace steady::test {

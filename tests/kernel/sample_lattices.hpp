@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "steady/lattice.hpp"
+#include "steady/lattice/lattice.hpp"
 #include "test_support.hpp"
 
 namespace steady::test {

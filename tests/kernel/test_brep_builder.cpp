@@ -4,12 +4,12 @@
 
 #include <random>
 
-#include "steady/beam_frustum.hpp"
-#include "steady/brep_builder.hpp"
-#include "steady/brep_io.hpp"
-#include "steady/errors.hpp"
-#include "steady/flat_lattice.hpp"
-#include "steady/sphere_layout.hpp"
+#include "steady/lattice/beam_frustum.hpp"
+#include "steady/brep/brep_builder.hpp"
+#include "steady/brep/brep_io.hpp"
+#include "steady/core/errors.hpp"
+#include "steady/lattice/flat_lattice.hpp"
+#include "steady/brep/sphere_layout.hpp"
 #include "test_lattices.hpp"
 #include "test_support.hpp"
 

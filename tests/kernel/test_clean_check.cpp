@@ -7,12 +7,12 @@
 #include <set>
 #include <tuple>
 
-#include "steady/beam_frustum.hpp"
-#include "steady/broad_phase.hpp"
-#include "steady/clean_check.hpp"
-#include "steady/convex_distance.hpp"
-#include "steady/errors.hpp"
-#include "steady/flat_lattice.hpp"
+#include "steady/lattice/beam_frustum.hpp"
+#include "steady/lattice/broad_phase.hpp"
+#include "steady/query/clean_check.hpp"
+#include "steady/lattice/convex_distance.hpp"
+#include "steady/core/errors.hpp"
+#include "steady/lattice/flat_lattice.hpp"
 #include "test_lattices.hpp"
 #include "test_support.hpp"
 

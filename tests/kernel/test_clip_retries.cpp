@@ -17,8 +17,8 @@
 #include <sstream>
 #include <unordered_set>
 
-#include "steady/brep_io.hpp"
-#include "steady/clip_retries.hpp"
+#include "steady/brep/brep_io.hpp"
+#include "brep/clip_retries.hpp"
 
 using namespace steady;
 

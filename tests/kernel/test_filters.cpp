@@ -14,9 +14,10 @@
 #include <sstream>
 
 #include "sample_lattices.hpp"
-#include "steady/errors.hpp"
-#include "steady/filtered_lattice.hpp"
-#include "steady/interference.hpp"
+#include "steady/brep/body_filter.hpp"
+#include "steady/core/errors.hpp"
+#include "steady/query/filtered_lattice.hpp"
+#include "steady/query/interference.hpp"
 
 namespace steady {
 namespace {

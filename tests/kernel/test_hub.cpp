@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "steady/hub.hpp"
+#include "steady/lattice/hub.hpp"
 #include "test_support.hpp"
 
 namespace steady {

@@ -17,13 +17,13 @@
 
 #include <random>
 
-#include "steady/beam_frustum.hpp"
-#include "steady/brep_builder.hpp"
-#include "steady/brep_io.hpp"
-#include "steady/errors.hpp"
-#include "steady/flat_lattice.hpp"
-#include "steady/hub_core.hpp"
-#include "steady/trim.hpp"
+#include "steady/lattice/beam_frustum.hpp"
+#include "steady/brep/brep_builder.hpp"
+#include "steady/brep/brep_io.hpp"
+#include "steady/core/errors.hpp"
+#include "steady/lattice/flat_lattice.hpp"
+#include "brep/hub_core.hpp"
+#include "steady/brep/trim.hpp"
 #include "test_support.hpp"
 
 namespace steady {

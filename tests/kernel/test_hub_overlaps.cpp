@@ -5,11 +5,11 @@
 #include <random>
 
 #include "lattice_test_shapes.hpp"
-#include "steady/hub_overlaps.hpp"
+#include "steady/query/hub_overlaps.hpp"
 #include "hub_test_shapes.hpp"
-#include "steady/errors.hpp"
-#include "steady/hub.hpp"
-#include "steady/lattice_properties.hpp"
+#include "steady/core/errors.hpp"
+#include "steady/lattice/hub.hpp"
+#include "steady/properties/lattice_properties.hpp"
 
 namespace steady {
 namespace {

@@ -6,9 +6,9 @@
 #include <random>
 
 #include "hub_test_shapes.hpp"
-#include "steady/errors.hpp"
+#include "steady/core/errors.hpp"
 #include "test_support.hpp"
-#include "steady/hub_properties.hpp"
+#include "steady/properties/hub_properties.hpp"
 
 namespace steady {
 namespace {

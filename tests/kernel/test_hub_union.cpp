@@ -7,11 +7,12 @@
 #include <random>
 
 #include "occ_reference.hpp"
-#include "steady/errors.hpp"
-#include "steady/hub.hpp"
-#include "steady/hub_overlaps.hpp"
-#include "steady/hub_union.hpp"
-#include "steady/lattice_properties.hpp"
+#include "steady/core/errors.hpp"
+#include "steady/lattice/hub.hpp"
+#include "steady/query/hub_overlaps.hpp"
+#include "steady/properties/hub_union.hpp"
+#include "properties/hub_solid.hpp"
+#include "steady/properties/lattice_properties.hpp"
 
 namespace steady {
 namespace {

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <random>
 
-#include "steady/interference.hpp"
+#include "steady/query/interference.hpp"
 #include "test_support.hpp"
 
 namespace steady {

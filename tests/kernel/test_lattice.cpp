@@ -8,8 +8,8 @@
 #include <set>
 #include <tuple>
 
-#include "steady/errors.hpp"
-#include "steady/lattice.hpp"
+#include "steady/core/errors.hpp"
+#include "steady/lattice/lattice.hpp"
 #include "test_support.hpp"
 
 namespace steady {

@@ -4,8 +4,8 @@
 
 #include <cstring>
 
-#include "steady/errors.hpp"
-#include "steady/lattice_io.hpp"
+#include "steady/core/errors.hpp"
+#include "steady/lattice/lattice_io.hpp"
 
 namespace steady {
 namespace {

@@ -3,7 +3,7 @@
 // counting phantom beams when a range was empty in two directions).
 #include <gtest/gtest.h>
 
-#include "steady/lattice.hpp"
+#include "steady/lattice/lattice.hpp"
 
 namespace steady {
 namespace {

@@ -8,11 +8,11 @@
 #include <random>
 
 #include "lattice_test_shapes.hpp"
-#include "steady/errors.hpp"
+#include "steady/core/errors.hpp"
 #include "test_support.hpp"
-#include "steady/similar_copies.hpp"
-#include "steady/lattice_properties.hpp"
-#include "steady/similar_copies.hpp"
+#include "steady/properties/similar_copies.hpp"
+#include "steady/properties/lattice_properties.hpp"
+#include "steady/properties/similar_copies.hpp"
 
 namespace steady {
 namespace {

@@ -9,9 +9,9 @@
 #include <random>
 
 #include "sample_lattices.hpp"
-#include "steady/errors.hpp"
-#include "steady/interference.hpp"
-#include "steady/lattice_query.hpp"
+#include "steady/core/errors.hpp"
+#include "steady/query/interference.hpp"
+#include "steady/query/lattice_query.hpp"
 
 namespace steady {
 namespace {

@@ -3,7 +3,7 @@
 // steps are translations, swirls, screws or general similarities close to a unit step.
 #include <random>
 
-#include "steady/lattice.hpp"
+#include "steady/lattice/lattice.hpp"
 #include "test_support.hpp"
 
 namespace steady::test {

@@ -5,7 +5,7 @@
 #include <chrono>
 #include <thread>
 
-#include "steady/progress.hpp"
+#include "steady/core/progress.hpp"
 
 namespace steady {
 namespace {

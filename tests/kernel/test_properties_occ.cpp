@@ -7,8 +7,8 @@
 
 #include "hub_test_shapes.hpp"
 #include "occ_reference.hpp"
-#include "steady/hub_overlaps.hpp"
-#include "steady/lattice_properties.hpp"
+#include "steady/query/hub_overlaps.hpp"
+#include "steady/properties/lattice_properties.hpp"
 
 namespace steady {
 namespace {

@@ -6,9 +6,9 @@
 #include <random>
 
 #include "sample_lattices.hpp"
-#include "steady/errors.hpp"
-#include "steady/interference.hpp"
-#include "steady/queries.hpp"
+#include "steady/core/errors.hpp"
+#include "steady/query/interference.hpp"
+#include "steady/query/queries.hpp"
 
 namespace steady {
 namespace {

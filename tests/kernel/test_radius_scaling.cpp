@@ -5,9 +5,9 @@
 #include <random>
 
 #include "lattice_test_shapes.hpp"
-#include "steady/errors.hpp"
-#include "steady/lattice_properties.hpp"
-#include "steady/radius_scaling.hpp"
+#include "steady/core/errors.hpp"
+#include "steady/properties/lattice_properties.hpp"
+#include "steady/properties/radius_scaling.hpp"
 
 namespace steady {
 namespace {

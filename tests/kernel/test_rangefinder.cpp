@@ -6,8 +6,8 @@
 #include <cmath>
 #include <random>
 
-#include "steady/interference.hpp"
-#include "steady/rangefinder.hpp"
+#include "steady/query/interference.hpp"
+#include "steady/query/rangefinder.hpp"
 #include "test_support.hpp"
 
 namespace steady {

@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "steady/errors.hpp"
-#include "steady/similarity.hpp"
+#include "steady/core/errors.hpp"
+#include "steady/core/similarity.hpp"
 #include "test_support.hpp"
 
 namespace steady {

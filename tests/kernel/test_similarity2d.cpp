@@ -4,8 +4,8 @@
 #include <cmath>
 #include <random>
 
-#include "steady/errors.hpp"
-#include "steady/similarity2d.hpp"
+#include "steady/core/errors.hpp"
+#include "steady/core/similarity2d.hpp"
 
 namespace steady {
 namespace {

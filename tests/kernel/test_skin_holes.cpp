@@ -20,8 +20,8 @@
 #include <utility>
 #include <unordered_set>
 
-#include "steady/brep_io.hpp"
-#include "steady/skin_holes.hpp"
+#include "steady/brep/brep_io.hpp"
+#include "brep/skin_holes.hpp"
 
 using namespace steady;
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <random>
 
-#include "steady/similarity.hpp"
+#include "steady/core/similarity.hpp"
 
 namespace steady::test {
 

@@ -20,15 +20,15 @@
 #include <random>
 #include <sstream>
 
-#include "steady/brep_builder.hpp"
-#include "steady/brep_io.hpp"
-#include "steady/errors.hpp"
-#include "steady/flat_lattice.hpp"
-#include "steady/lattice_io.hpp"
-#include "steady/lattice_part.hpp"
-#include "steady/progress.hpp"
-#include "steady/step_assembly.hpp"
-#include "steady/trim.hpp"
+#include "steady/brep/brep_builder.hpp"
+#include "steady/brep/brep_io.hpp"
+#include "steady/core/errors.hpp"
+#include "steady/lattice/flat_lattice.hpp"
+#include "steady/lattice/lattice_io.hpp"
+#include "steady/brep/lattice_part.hpp"
+#include "steady/core/progress.hpp"
+#include "steady/brep/step_assembly.hpp"
+#include "steady/brep/trim.hpp"
 #include "occ_reference.hpp"
 #include "test_lattices.hpp"
 

@@ -1,0 +1,29 @@
+#pragma once
+// B-rep utilities shared by the kernel, the module, tests and benchmarks: BREP text in and out, validity
+// (BRepCheck_Analyzer) with a readable report, volume (BRepGProp) and element counts.
+#include <TopoDS_Shape.hxx>
+
+#include <cstdint>
+#include <string>
+
+#include "steady/core/progress.hpp"
+
+namespace steady {
+
+// OpenCASCADE's BREP text (what FreeCAD's Part.Shape.exportBrepToString gives and importBrep reads). Cancelled
+// when the progress is cancelled.
+std::string brep_to_text(const TopoDS_Shape& shape, Progress& progress = no_progress());
+// Reads BREP text; throws InvalidInput naming `field` when the text does not parse or holds no shape.
+TopoDS_Shape brep_from_text(const std::string& text, const std::string& field);
+
+bool is_valid(const TopoDS_Shape& shape);
+// Empty when valid; otherwise the faulty sub-shapes (type and index) with their BRepCheck statuses, at most
+// `max_lines` lines.
+std::string validity_report(const TopoDS_Shape& shape, int max_lines = 20);
+
+double shape_volume(const TopoDS_Shape& shape);
+std::int64_t count_subshapes(const TopoDS_Shape& shape, int type);  // type: a TopAbs_ShapeEnum value
+std::int64_t face_count(const TopoDS_Shape& shape);
+std::int64_t solid_count(const TopoDS_Shape& shape);
+
+}  // namespace steady

@@ -1,0 +1,40 @@
+#pragma once
+// A lattice made into a CAD part: the untrimmed lattice, or the lattice trimmed into a body (given as BREP text)
+// with a policy and an optional skin, as BREP text or as a STEP assembly. This is what the Python module and the
+// FreeCAD feature LatticePart call.
+#include <array>
+#include <optional>
+#include <string>
+
+#include "steady/lattice/flat_lattice.hpp"
+#include "steady/lattice/lattice.hpp"
+#include "steady/core/progress.hpp"
+#include "steady/brep/trim.hpp"
+
+namespace steady {
+
+struct LatticePartRequest {
+  std::optional<std::string> body_brep;  // BREP text of the body; absent: the whole (clean) lattice
+  TrimOptions trim;                      // policy, dangling beams, skin
+};
+
+// The part's solid as BREP text. InvalidInput for a skin without a body, and for everything trim_lattice and
+// build_lattice_brep refuse; Cancelled soon after the progress is cancelled. `stats`: where given, how the trim
+// went (all zero without a body).
+std::string lattice_part_brep(const FlatLattice& lattice, const LatticePartRequest& request,
+                              Progress& progress = no_progress(), TrimStats* stats = nullptr);
+
+struct StepNames {
+  std::string assembly = "LatticePart";
+  std::string lattice = "Lattice";
+  std::string skin = "Skin";
+  std::array<double, 3> lattice_color{0.85, 0.55, 0.20};
+  std::array<double, 3> skin_color{0.55, 0.65, 0.80};
+};
+
+// Writes a STEP assembly: the lattice (trimmed to the inner offset when there is a skin) and the skin as two
+// named, coloured parts (the lattice alone when there is no skin). Cancelled leaves the file untouched.
+void write_lattice_step(const std::string& path, const FlatLattice& lattice, const LatticePartRequest& request,
+                        const StepNames& names = {}, Progress& progress = no_progress());
+
+}  // namespace steady

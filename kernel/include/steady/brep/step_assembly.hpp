@@ -1,0 +1,30 @@
+#pragma once
+// STEP assemblies through OpenCASCADE's XCAF: named, coloured parts under one named assembly, as CAD systems
+// (FreeCAD, and OpenCASCADE's own STEP reader) read them back.
+#include <TopoDS_Shape.hxx>
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "steady/core/progress.hpp"
+
+namespace steady {
+
+struct StepPart {
+  std::string name;
+  TopoDS_Shape shape;
+  std::array<double, 3> color{0.8, 0.8, 0.8};  // RGB in [0, 1]
+  bool has_color = true;
+};
+
+// Writes the parts as components of one assembly. Throws InvalidInput naming "path" when the file cannot be
+// written, "parts" when there is nothing to write. Cancelled while the shapes are translated leaves the file
+// untouched (it is written only after; the writing itself runs to its end).
+void write_step_assembly(const std::string& path, const std::vector<StepPart>& parts,
+                         const std::string& assembly_name = "LatticePart", Progress& progress = no_progress());
+
+// Reads a STEP file back: the leaf parts with their names, colours and shapes (placed).
+std::vector<StepPart> read_step_parts(const std::string& path);
+
+}  // namespace steady

@@ -1,0 +1,80 @@
+#pragma once
+// Trimming a lattice into a CAD body, with an optional skin. Classification first, Booleans only where needed.
+//
+// Every hub (a ball with its half-beams up to the beams' cuts) has a bounding ball. Against the body's boundary
+// it is inside, outside or crossing: a triangulation of the boundary bounds the distance quickly, the exact
+// distance (BRepExtrema) decides the hubs near it, and the inside/outside state spreads along beams from one
+// exact point classification per connected region. Then:
+//   policy Clip  - inside hubs are kept whole (Boolean-free B-rep), outside hubs dropped, and only the crossing
+//                  hubs, closed by disks at their cuts toward kept hubs, meet the body in one Common; the result
+//                  is glued to the rest along the circles of those disks (the disks are removed);
+//   policy Whole - only hubs entirely inside are kept, never cut (no Boolean at all).
+// Dangling beams (joining a kept hub to a dropped one) are kept as stumps closed at their cut, or removed.
+// With a skin of thickness t, the part is skin(t) united with the lattice trimmed to the inner offset: hubs are
+// classified against the inner boundary, and only the hubs crossing it take part in the union with the skin.
+#include <TopoDS_Shape.hxx>
+
+#include <cstdint>
+#include <string>
+
+#include "steady/lattice/flat_lattice.hpp"
+#include "steady/lattice/lattice.hpp"
+#include "steady/core/progress.hpp"
+
+namespace steady {
+
+enum class TrimPolicy { Clip, Whole };
+enum class DanglingBeams { Keep, Remove };
+
+TrimPolicy trim_policy_from_string(const std::string& name);        // "clip" | "whole"
+DanglingBeams dangling_from_string(const std::string& name);        // "keep" | "remove"
+
+struct TrimOptions {
+  TrimPolicy policy = TrimPolicy::Clip;
+  DanglingBeams dangling = DanglingBeams::Keep;
+  double skin = 0.0;          // wall thickness; 0: no skin
+  bool unite_skin = true;     // false: return the skin and the trimmed lattice as separate shapes
+  bool verify_booleans = true;  // check the Booleans' output with BRepCheck (an error instead of a bad solid)
+  bool move_cuts = true;  // cut beams between crossing hubs off their middle where that keeps the hubs in
+                          // separate clusters (false: only halfway, for comparisons)
+};
+
+struct TrimStats {
+  std::int64_t inside_hubs = 0, outside_hubs = 0, crossing_hubs = 0;
+  std::int64_t exact_distance_tests = 0;  // hubs the triangulation could not decide
+  std::int64_t removed_beams = 0;         // dangling beams removed
+  std::int64_t band_clusters = 0;         // independent Booleans the crossing hubs were split into
+  std::int64_t moved_cuts = 0;            // beams between crossing hubs cut off their middle, where the
+                                          // boundary leaves room, to keep their hubs in separate clusters
+  std::int64_t retried_clusters = 0;      // clusters whose first Common failed, clipped by a retry; of those:
+  std::int64_t relaid_clusters = 0;       //   with their spheres laid out the other way
+  std::int64_t turned_clusters = 0;       //   in a turned frame
+  std::int64_t fuzzy_clusters = 0;        //   with a fuzzy Common (1e-4 or 1e-3 of their size)
+  std::int64_t holed_clusters = 0;        // with a skin: clusters glued to it by holes in its inner faces, no
+                                          // Boolean (the others by a glued Fuse)
+  std::int64_t core_hubs = 0, distinct_cores = 0;  // crowded hubs built from cores, and the cores built
+  bool relaid_out = false;                // the first attempt failed as a whole; a later one (every cut halfway,
+                                          // or the spheres laid out the other way) made the part
+  std::string relaid_reason;              //   why the earlier attempts failed
+  std::int64_t faces = 0;
+  double classify_seconds = 0.0, build_seconds = 0.0, boolean_seconds = 0.0, assemble_seconds = 0.0;
+  double union_seconds = 0.0;      // of boolean_seconds, the union with the skin
+  bool union_through_pores = false;  // the union with the skin failed its checks: united through the pores
+  std::string pores_reason;          //   what the check found
+};
+
+struct TrimResult {
+  TopoDS_Shape part;     // the result: trimmed lattice, united with the skin when there is one and unite_skin
+  TopoDS_Shape lattice;  // when !unite_skin: the lattice trimmed to the inner offset
+  TopoDS_Shape skin;     // the skin, when there is one
+  TrimStats stats;
+};
+
+// Throws InvalidInput naming "body" (not one closed valid solid; the lattice misses it), "skin" (negative,
+// too thick) or "policy" (nothing left after trimming). Reports to `progress` through the skin, the classification,
+// the building of the pieces, the Booleans (cluster by cluster, and inside OpenCASCADE's own loops) and the final
+// assembly; throws Cancelled soon after it is cancelled (the inputs are never changed, so nothing needs undoing).
+TrimResult trim_lattice(const FlatLattice& lattice, const TopoDS_Shape& body, const TrimOptions& options,
+                        Progress& progress = no_progress());
+
+}  // namespace steady

@@ -1,0 +1,22 @@
+#pragma once
+// The lattice file format: versioned JSON holding a whole lattice definition (docs/lattice-format.md).
+// Saving then loading reproduces the definition bit for bit (similarities are saved by their generator,
+// doubles in shortest round-trip form). Loading refuses a malformed or inconsistent file with an
+// InvalidInput whose message names the field ("beams[2].to: node 5 does not exist ...").
+#include <string>
+
+#include "steady/lattice/lattice.hpp"
+
+namespace steady {
+
+constexpr int kLatticeFormatVersion = 1;
+constexpr const char* kLatticeFormatName = "steady-lattice";
+
+std::string lattice_to_json(const Lattice& lattice, int indent = 2);
+Lattice lattice_from_json(const std::string& text);
+
+// A similarity alone, in the same JSON form as inside a lattice file.
+std::string similarity_to_json(const Similarity& s);
+Similarity similarity_from_json(const std::string& text);
+
+}  // namespace steady

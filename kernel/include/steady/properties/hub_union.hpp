@@ -1,0 +1,40 @@
+#pragma once
+// The exact union of overlapping hubs, for the integral properties of a lattice that is not clean.
+//
+// When hubs of different nodes overlap, the lattice is no longer the assembly of its hubs: the sum over hubs
+// counts the shared regions more than once. The overlapping hubs fall into clusters (connected components of
+// the "overlaps" relation); each cluster's union is computed exactly with OpenCASCADE (one Fuse of its balls
+// and stump frustums, all exact quadrics and planes, integrated by BRepGProp to 1e-10 relative), and the
+// properties become
+//     sum over all hubs  +  sum over clusters of ( union of the cluster's hubs  -  sum of its hubs ).
+// Hubs outside every cluster have disjoint interiors from everything else, so this is exact. Areas exclude the
+// cut disks (between a hub and its neighbour across a beam's mid-plane: inside the lattice). The Fuse result is
+// checked (valid solid, volume between the largest hub's and the sum) before it is trusted.
+#include <cstdint>
+#include <vector>
+
+#include "steady/lattice/hub.hpp"
+#include "steady/query/hub_overlaps.hpp"
+#include "steady/properties/hub_properties.hpp"
+#include "steady/lattice/lattice.hpp"
+#include "steady/properties/mass_moments.hpp"
+#include "steady/core/progress.hpp"
+
+namespace steady {
+
+// The most hubs whose union is computed (the clusters' Booleans grow with them); beyond, properties() refuses.
+constexpr std::int64_t kMaxUnionHubs = 2000;
+
+struct HubUnionCorrection {
+  MassMoments moments;            // to add to the sum over hubs; moments about `reference`
+  std::int64_t clusters = 0;      // clusters of overlapping hubs
+  std::int64_t hubs = 0;          // hubs in them
+  double volume_error = 0.0;      // BRepGProp's error estimate, relative to the clusters' volume
+};
+
+// `overlaps` must list every overlapping pair (HubOverlapReport::overlaps with overlap_count of them).
+HubUnionCorrection hub_union_correction(const Lattice& lattice, const std::vector<HubOverlap>& overlaps,
+                                        const Vec3& reference, const HubPropertiesOptions& options = {},
+                                        Progress& progress = no_progress());
+
+}  // namespace steady

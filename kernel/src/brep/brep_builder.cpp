@@ -1,0 +1,965 @@
+#include "steady/brep/brep_builder.hpp"
+
+#include <BRepClass3d_SolidClassifier.hxx>
+#include <BRepBuilderAPI_Transform.hxx>
+#include <BRep_Builder.hxx>
+#include <ShapeFix_ShapeTolerance.hxx>
+#include <BRep_Tool.hxx>
+#include <GC_MakeCircle.hxx>
+#include <Geom2d_Circle.hxx>
+#include <Geom2d_Line.hxx>
+#include <Geom_Circle.hxx>
+#include <Geom_ConicalSurface.hxx>
+#include <Geom_CylindricalSurface.hxx>
+#include <Geom_Line.hxx>
+#include <Geom_Plane.hxx>
+#include <Geom_SphericalSurface.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
+#include <TopoDS_Shell.hxx>
+#include <TopoDS_Solid.hxx>
+#include <TopoDS_Vertex.hxx>
+#include <TopoDS_Wire.hxx>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+#include <stdexcept>
+
+#include "brep/sphere_pcurve.hpp"
+#include "steady/lattice/beam_frustum.hpp"
+#include "lattice/circle_frames.hpp"
+#include "steady/query/clean_check.hpp"
+#include "steady/core/errors.hpp"
+#include "brep/hub_catalog.hpp"
+#include "brep/hub_core.hpp"
+#include "steady/core/memory_budget.hpp"
+
+namespace steady {
+
+namespace {
+
+constexpr double kTwoPi = 2.0 * M_PI;
+// A beam's seam meets an existing vertex of a circle when their parameters agree to this (radians); otherwise the
+// circle gets one more vertex.
+constexpr double kSameVertexAngle = 1e-9;
+// Below this |sin(half-angle)| a beam is a cylinder: OpenCASCADE refuses cones of (near) zero angle.
+constexpr double kCylinderSine = 1e-12;
+// Memory of one face with its edges, vertices, curves and pcurves (measured: 41,000 faces of a 30,000-beam lattice
+// took 209 MB, about 5 KB each; shared pcurves of similar hubs keep it there), with headroom.
+constexpr std::uint64_t kBytesPerFace = 8192;
+// Collars of crowded hubs are sought up to this many ball radii from the center (beyond, the beam's cut decides).
+constexpr double kMaxCollarPosition = 50.0;
+
+gp_Pnt pnt(const Vec3& v) { return gp_Pnt(v.x, v.y, v.z); }
+gp_Dir dir(const Vec3& v) { return gp_Dir(v.x, v.y, v.z); }
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+
+// A circle around a beam where faces meet: an exit circle on a clean hub's sphere, a core's collar, a cut, or a
+// joint. Its edges run between its vertices.
+struct Ring {
+  Handle(Geom_Circle) curve;
+  Circle circle;                  // normal: the curve's axis
+  Vec3 e1{0.0}, e2{0.0};          // world directions of parameters 0 and pi/2
+  std::vector<double> params;     // vertex parameters, sorted, in [params[0], params[0] + 2 pi)
+  std::vector<TopoDS_Vertex> vertices;
+  std::vector<TopoDS_Edge> edges; // edges[k] from params[k] to params[k+1] (the last wraps by 2 pi)
+  bool fixed = false;             // its vertices exist already (a core's collar, a cut built earlier)
+  double tolerance = kBrepTolerance;
+  double edge_end(std::size_t k) const { return k + 1 < params.size() ? params[k + 1] : params[0] + kTwoPi; }
+  double param_of(const Vec3& d) const { return std::atan2(glm::dot(d, e2), glm::dot(d, e1)); }
+  Vec3 direction_of(double t) const { return std::cos(t) * e1 + std::sin(t) * e2; }
+};
+
+// A clean hub's exit circle: where its sphere's layout puts it.
+struct EndCircle : Ring {
+  std::int64_t hub = -1;
+  int slot = -1;
+  double axial = 0.0;  // distance of the circle's plane from its node's center, along the beam
+};
+
+enum class BeamKind { None, Whole, HalfA, HalfB, Split };
+
+// How a beam's conical faces run: rings from node a's side to node b's, and the seam of each segment.
+struct BeamPlan {
+  std::vector<int> rings;        // 0: end a, 1: end b, 2: the cut, 3 + k: joint k
+  std::vector<double> joints_v;  // cone position v of each joint
+  std::vector<Vec3> seam;        // per segment: the direction of its seam (orthogonal to the axis)
+};
+
+struct BeamWork {
+  BeamKind kind = BeamKind::None;
+  EndCircle end[2];
+  Ring cut;
+  bool cut_is_new = false;
+  std::vector<Ring> joints;
+  BeamPlan plan;
+  std::vector<TopoDS_Face> cones;  // per segment
+  std::vector<int> cone_side;      // per segment: 0 when on node a's side of the cut, 1 on node b's
+  TopoDS_Face cap[2];              // disks closing the a-side / b-side piece at the cut
+
+  // The ring a plan names: 0 and 1 the ends at balls a and b, 2 the cut, 3 and up the joints.
+  Ring& ring(int id) {
+    if (id < 2) return end[id];
+    if (id == 2) return cut;
+    return joints[id - 3];
+  }
+};
+
+struct HubWork {
+  std::int64_t ball = -1;
+  std::vector<std::pair<std::int64_t, int>> stumps;  // (beam, end)
+  int kind = 0;  // 0: clean (a sphere with holes), 1: hull core, 2: transversal core
+  std::vector<TopoDS_Face> faces;
+};
+
+struct ShapeWork {
+  SphereLayout layout;
+  std::vector<std::vector<ArcPcurve>> pcurves;  // per circle, per arc
+  double max_error = 0.0;
+  std::shared_ptr<const HubCore> core;           // for core hubs
+};
+
+Handle(Geom2d_Line) line2d(double u, double v, double du, double dv) {
+  return new Geom2d_Line(gp_Pnt2d(u, v), gp_Dir2d(du, dv));
+}
+
+TopoDS_Vertex make_vertex(const BRep_Builder& b, const gp_Pnt& p, double tol) {
+  TopoDS_Vertex v;
+  b.MakeVertex(v, p, tol);
+  return v;
+}
+
+// The spherical face of one hub: circles, seam pieces, pole edges, wires.
+void build_sphere_face(const BRep_Builder& b, const Ball& ball, const HubPlacement& place, const ShapeWork& shape,
+                       HubWork& hub, std::vector<BeamWork>& beams) {
+  const SphereLayout& L = shape.layout;
+  const Mat3& M = place.rotation;
+  const double R = ball.radius;
+  const double tol = std::max(kBrepTolerance, 2.0 * R * (shape.max_error + kHubMatchTolerance));
+  const Vec3 zw = glm::normalize(M * L.z), xw0 = M * L.x;
+  const Vec3 xw = glm::normalize(xw0 - glm::dot(xw0, zw) * zw), yw = glm::cross(zw, xw);
+  Handle(Geom_SphericalSurface) surface = new Geom_SphericalSurface(gp_Ax3(pnt(ball.center), dir(zw), dir(xw)), R);
+  TopoDS_Face face;
+  b.MakeFace(face, surface, kBrepTolerance);
+
+  // Circles: 3D curves, vertices and edges with their (u, v) curves.
+  const int n = static_cast<int>(hub.stumps.size());
+  auto end_of = [&](int slot) -> EndCircle& { return beams[hub.stumps[slot].first].end[hub.stumps[slot].second]; };
+  for (int s = 0; s < n; ++s) {
+    EndCircle& ec = end_of(s);
+    ec.tolerance = tol;
+    ec.curve = new Geom_Circle(gp_Ax2(pnt(ec.circle.center), dir(ec.circle.normal), dir(ec.e1)), ec.circle.radius);
+    ec.vertices.clear();
+    for (double p : ec.params) ec.vertices.push_back(make_vertex(b, ec.curve->Value(p), tol));
+    const CircleLayout& cl = L.circles[s];
+    ec.edges.clear();
+    for (std::size_t k = 0; k < ec.params.size(); ++k) {
+      const double t0 = ec.params[k], t1 = ec.edge_end(k), mid = 0.5 * (t0 + t1);
+      std::size_t arc = 0;
+      while (arc + 1 < cl.arcs.size() && mid > cl.arcs[arc].t1) ++arc;
+      TopoDS_Edge e;
+      b.MakeEdge(e, ec.curve, tol);
+      b.Add(e, ec.vertices[k].Oriented(TopAbs_FORWARD));
+      b.Add(e, ec.vertices[(k + 1) % ec.params.size()].Oriented(TopAbs_REVERSED));
+      b.UpdateEdge(e, shape.pcurves[s][arc].curve, face, tol);
+      b.Range(e, t0, t1);
+      ec.edges.push_back(e);
+    }
+  }
+  auto own_vertex = [&](int slot, int own) -> const TopoDS_Vertex& {
+    const EndCircle& ec = end_of(slot);
+    const double p = L.circles[slot].own_vertices[own];
+    const std::size_t k = std::lower_bound(ec.params.begin(), ec.params.end(), p - 1e-12) - ec.params.begin();
+    return ec.vertices[k];
+  };
+
+  // Seam stops from bottom to top: (latitude, vertex).
+  std::vector<std::pair<double, TopoDS_Vertex>> stops;
+  TopoDS_Vertex south_pole, north_pole;
+  if (L.south < 0) {
+    south_pole = make_vertex(b, pnt(ball.center - R * zw), tol);
+    stops.emplace_back(-M_PI / 2, south_pole);
+  } else {
+    stops.emplace_back(L.circles[L.south].crossing_v[0], own_vertex(L.south, 0));
+  }
+  for (int s : L.straddles) {
+    stops.emplace_back(L.circles[s].crossing_v[0], own_vertex(s, 0));
+    stops.emplace_back(L.circles[s].crossing_v[1], own_vertex(s, 1));
+  }
+  if (L.north < 0) {
+    north_pole = make_vertex(b, pnt(ball.center + R * zw), tol);
+    stops.emplace_back(M_PI / 2, north_pole);
+  } else {
+    stops.emplace_back(L.circles[L.north].crossing_v[0], own_vertex(L.north, 0));
+  }
+  Handle(Geom_Circle) meridian = new Geom_Circle(gp_Ax2(pnt(ball.center), dir(-yw), dir(xw)), R);
+  Handle(Geom2d_Line) seam_right = line2d(kTwoPi, 0.0, 0.0, 1.0), seam_left = line2d(0.0, 0.0, 0.0, 1.0);
+  std::vector<TopoDS_Edge> seam;  // piece k joins stops[2k] and stops[2k+1]
+  for (std::size_t k = 0; k + 1 < stops.size(); k += 2) {
+    TopoDS_Edge e;
+    b.MakeEdge(e, meridian, tol);
+    b.Add(e, stops[k].second.Oriented(TopAbs_FORWARD));
+    b.Add(e, stops[k + 1].second.Oriented(TopAbs_REVERSED));
+    b.UpdateEdge(e, seam_right, seam_left, face, tol);
+    b.Range(e, stops[k].first, stops[k + 1].first);
+    seam.push_back(e);
+  }
+  auto pole_edge = [&](const TopoDS_Vertex& v, double lat) {
+    TopoDS_Edge e;
+    b.MakeEdge(e);
+    b.UpdateEdge(e, line2d(0.0, lat, 1.0, 0.0), face, tol);
+    b.Add(e, v.Oriented(TopAbs_FORWARD));
+    b.Add(e, v.Oriented(TopAbs_REVERSED));
+    b.Degenerated(e, true);
+    b.Range(e, 0.0, kTwoPi);
+    return e;
+  };
+  // The edges of one arc of a circle, reversed, in decreasing parameter order: on the sphere every circle runs
+  // clockwise in (u, v), its hole on the right.
+  auto add_arc = [&](TopoDS_Wire& w, int slot, ArcBranch branch) {
+    const EndCircle& ec = end_of(slot);
+    const CircleLayout& cl = L.circles[slot];
+    const CircleArc& arc = cl.arcs[0].branch == branch ? cl.arcs[0] : cl.arcs[1];
+    for (std::size_t k = ec.params.size(); k-- > 0;) {
+      const double mid = 0.5 * (ec.params[k] + ec.edge_end(k));
+      if (mid > arc.t0 && mid < arc.t1) b.Add(w, ec.edges[k].Oriented(TopAbs_REVERSED));
+    }
+  };
+
+  TopoDS_Wire outer;
+  b.MakeWire(outer);
+  if (L.south < 0) {
+    b.Add(outer, pole_edge(south_pole, -M_PI / 2).Oriented(TopAbs_FORWARD));
+  } else {
+    add_arc(outer, L.south, ArcBranch::South);
+  }
+  for (std::size_t k = 0; k < seam.size(); ++k) {  // up the right side
+    b.Add(outer, seam[k].Oriented(TopAbs_FORWARD));
+    if (k < L.straddles.size()) add_arc(outer, L.straddles[k], ArcBranch::Right);
+  }
+  if (L.north < 0) {
+    b.Add(outer, pole_edge(north_pole, M_PI / 2).Oriented(TopAbs_REVERSED));
+  } else {
+    add_arc(outer, L.north, ArcBranch::North);
+  }
+  for (std::size_t k = seam.size(); k-- > 0;) {  // down the left side
+    b.Add(outer, seam[k].Oriented(TopAbs_REVERSED));
+    if (k > 0) add_arc(outer, L.straddles[k - 1], ArcBranch::Left);
+  }
+  outer.Closed(true);
+  b.Add(face, outer);
+  for (int s = 0; s < n; ++s) {
+    if (L.circles[s].role != CircleRole::Inner) continue;
+    TopoDS_Wire hole;
+    b.MakeWire(hole);
+    add_arc(hole, s, ArcBranch::Inner);
+    hole.Closed(true);
+    b.Add(face, hole);
+  }
+  hub.faces = {face};
+}
+
+// A station of a beam's conical face: a circle at some axial position, with its edges.
+struct Station {
+  const std::vector<TopoDS_Edge>* edges;
+  const std::vector<double>* params;  // edges[k] spans params[k] .. params[k+1] (wrapping)
+  TopoDS_Vertex seam_vertex;
+  double seam_param = 0.0;
+  double sign = 1.0;  // +1: the circle turns counterclockwise about the beam axis, -1: clockwise
+  double v = 0.0;     // position along the cone's generator
+  double tolerance = kBrepTolerance;
+};
+
+void build_cone_face(const BRep_Builder& b, const BeamFrustum& fr, const Vec3& seam_dir, const Station& lower,
+                     const Station& upper, TopoDS_Face& out) {
+  const Vec3 axis = fr.cone.axis;
+  const Vec3 origin = fr.circle_a.center;
+  const double r0 = fr.circle_a.radius;
+  const double sin_a = -fr.cone.sin_phi, cos_a = fr.cone.cos_phi;  // OpenCASCADE's semi-angle is -phi
+  const gp_Ax3 frame(pnt(origin), dir(axis), dir(seam_dir));
+  Handle(Geom_Surface) surface;
+  if (std::abs(sin_a) < kCylinderSine)
+    surface = new Geom_CylindricalSurface(frame, r0);
+  else
+    surface = new Geom_ConicalSurface(frame, std::asin(sin_a), r0);
+  TopoDS_Face face;
+  b.MakeFace(face, surface, kBrepTolerance);
+  const double tol = std::max(lower.tolerance, upper.tolerance);
+  // Seam: the generator at u = 0, parameterized by v (the cone's v is arc length along generators).
+  const Vec3 p00 = origin + r0 * seam_dir;
+  const Vec3 generator = sin_a * seam_dir + cos_a * axis;
+  Handle(Geom_Line) line = new Geom_Line(gp_Ax1(pnt(p00), dir(generator)));
+  TopoDS_Edge seam;
+  b.MakeEdge(seam, line, tol);
+  b.Add(seam, lower.seam_vertex.Oriented(TopAbs_FORWARD));
+  b.Add(seam, upper.seam_vertex.Oriented(TopAbs_REVERSED));
+  b.UpdateEdge(seam, line2d(kTwoPi, 0.0, 0.0, 1.0), line2d(0.0, 0.0, 0.0, 1.0), face, tol);
+  b.Range(seam, lower.v, upper.v);
+
+  struct Placed {
+    double u0;
+    TopoDS_Edge edge;
+  };
+  auto place = [&](const Station& st, bool is_lower) {
+    std::vector<Placed> out;
+    const std::size_t n = st.params->size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const double t0 = (*st.params)[k], t1 = k + 1 < n ? (*st.params)[k + 1] : (*st.params)[0] + kTwoPi;
+      const double u_mid = st.sign * (0.5 * (t0 + t1) - st.seam_param);
+      const double shift = -kTwoPi * std::floor(u_mid / kTwoPi);
+      // u(t) = sign * (t - seam_param) + shift, on the line v = st.v.
+      const TopoDS_Edge& e = (*st.edges)[k];
+      b.UpdateEdge(e, line2d(shift - st.sign * st.seam_param, st.v, st.sign, 0.0), face, tol);
+      b.Range(e, t0, t1);
+      const double ua = st.sign * (t0 - st.seam_param) + shift, ub = st.sign * (t1 - st.seam_param) + shift;
+      // Lower station runs in +u, upper in -u.
+      const bool forward = is_lower ? st.sign > 0.0 : st.sign < 0.0;
+      out.push_back({std::min(ua, ub), TopoDS::Edge(e.Oriented(forward ? TopAbs_FORWARD : TopAbs_REVERSED))});
+    }
+    std::sort(out.begin(), out.end(), [&](const Placed& x, const Placed& y) { return is_lower ? x.u0 < y.u0 : x.u0 > y.u0; });
+    return out;
+  };
+  TopoDS_Wire wire;
+  b.MakeWire(wire);
+  for (const Placed& p : place(lower, true)) b.Add(wire, p.edge);
+  b.Add(wire, seam.Oriented(TopAbs_FORWARD));
+  for (const Placed& p : place(upper, false)) b.Add(wire, p.edge);
+  b.Add(wire, seam.Oriented(TopAbs_REVERSED));
+  wire.Closed(true);
+  b.Add(face, wire);
+  out = face;
+}
+
+}  // namespace
+
+BrepSelection BrepSelection::everything(const FlatLattice& lattice) {
+  BrepSelection s;
+  s.balls.assign(lattice.ball_count(), 1);
+  s.beams.assign(lattice.beam_count(), 1);
+  return s;
+}
+
+namespace {
+
+// Caps of a hub's exit circles on its sphere pairwise apart (the clean condition on one ball).
+bool caps_disjoint(const Ball& ball, const std::vector<Circle>& exits) {
+  for (std::size_t a = 0; a < exits.size(); ++a)
+    for (std::size_t b = a + 1; b < exits.size(); ++b) {
+      auto angle = [&](const Circle& c) {
+        return std::atan2(c.radius, glm::dot(c.center - ball.center, c.normal));
+      };
+      const double between = std::atan2(glm::length(glm::cross(exits[a].normal, exits[b].normal)),
+                                        glm::dot(exits[a].normal, exits[b].normal));
+      if (between - angle(exits[a]) - angle(exits[b]) < kCleanAngularGap) return false;
+    }
+  return true;
+}
+
+// A built ball's hub: its stumps (the beams `built` says are part of it, with the end at this ball), their exit
+// circles, and its kind: 0 when the circles keep apart (clean), else a core (1: hull model, 2: transversal), with
+// the numbers its core depends on in `extras` (per stump its slope and end radius in ball radii).
+template <class Built>
+HubGeometry hub_geometry(const FlatLattice& f, const std::vector<BeamFrustum>& frustums, std::int64_t i,
+                         const Built& built, std::vector<std::pair<std::int64_t, int>>& stumps) {
+  HubGeometry g;
+  g.ball = f.balls[i];
+  std::vector<double> slopes, end_radii;
+  bool all_tangent = true, all_transversal = true;
+  for (const std::int64_t* e = f.incident_begin(i); e != f.incident_end(i); ++e) {
+    if (!built(*e)) continue;
+    const int end = f.beams[*e].a == i ? 0 : 1;
+    const BeamFrustum& fr = frustums[*e];
+    stumps.emplace_back(*e, end);
+    g.exits.push_back(end == 0 ? fr.circle_a : fr.circle_b);
+    const double r = end == 0 ? f.beams[*e].ra : f.beams[*e].rb;
+    slopes.push_back(end == 0 ? fr.cone.sin_phi : -fr.cone.sin_phi);
+    end_radii.push_back(r / g.ball.radius);
+    all_tangent = all_tangent && r >= g.ball.radius * (1.0 - 1e-12);
+    all_transversal = all_transversal && r < g.ball.radius * (1.0 - 1e-9);
+  }
+  if (!caps_disjoint(g.ball, g.exits)) {
+    if (!all_tangent && !all_transversal)
+      fail_input("hub", "ball " + std::to_string(i) +
+                            " mixes beams tangent to it (hull model) with thinner beams, and their circles overlap");
+    g.kind = all_tangent ? 1 : 2;
+    for (std::size_t s = 0; s < slopes.size(); ++s) g.extras.push_back(slopes[s]), g.extras.push_back(end_radii[s]);
+  }
+  return g;
+}
+
+// A crowded hub's stumps for its core, from its caps (in the hub's canonical frame, or in the world frame scaled
+// to the ball: the core's collars depend on angles and distances only) and the slopes and end radii in its
+// geometry's extras.
+std::vector<CoreStump> core_stumps(const std::vector<SphereCap>& caps, const std::vector<double>& extras) {
+  std::vector<CoreStump> stumps;
+  for (std::size_t k = 0; k < caps.size(); ++k) {
+    CoreStump st;
+    st.direction = caps[k].direction;
+    st.exit = caps[k].exit;
+    st.sin_phi = extras[2 * k];
+    st.end_radius = extras[2 * k + 1];
+    stumps.push_back(st);
+  }
+  return stumps;
+}
+
+CoreKind core_kind(int hub_kind) { return hub_kind == 1 ? CoreKind::Hull : CoreKind::Transversal; }
+
+// The frustums of the lattice with the selection's cut places.
+std::vector<BeamFrustum> selected_frustums(const FlatLattice& f, const BrepSelection& selection) {
+  std::vector<BeamFrustum> frustums = beam_frustums(f);
+  if (!selection.cut_fractions.empty()) {
+    if (static_cast<std::int64_t>(selection.cut_fractions.size()) != f.beam_count())
+      fail_input("selection", "needs one cut fraction per beam");
+    for (std::int64_t e = 0; e < f.beam_count(); ++e) {
+      const double t = selection.cut_fractions[e];
+      if (!(t > 0.0 && t < 1.0)) fail_input("selection", "cut fraction of beam " + std::to_string(e) + " outside (0, 1)");
+      frustums[e].cut_fraction = t;
+    }
+  }
+  return frustums;
+}
+
+gp_Trsf placement_transform(const Ball& ball, const Mat3& m) {
+  const double r = ball.radius;
+  gp_Trsf t;
+  t.SetValues(r * m[0][0], r * m[1][0], r * m[2][0], ball.center.x, r * m[0][1], r * m[1][1], r * m[2][1],
+              ball.center.y, r * m[0][2], r * m[1][2], r * m[2][2], ball.center.z);
+  return t;
+}
+
+// A ring read from an existing closed circle edge set (a core's collar copied into place, or a cut built before).
+void ring_from_edges(Ring& ring, const Handle(Geom_Circle)& curve, const std::vector<double>& params,
+                     const std::vector<TopoDS_Vertex>& vertices, const std::vector<TopoDS_Edge>& edges) {
+  ring.curve = curve;
+  const gp_Ax2& ax = curve->Position();
+  ring.circle = {Vec3(ax.Location().X(), ax.Location().Y(), ax.Location().Z()),
+                 Vec3(ax.Direction().X(), ax.Direction().Y(), ax.Direction().Z()), curve->Radius()};
+  ring.e1 = Vec3(ax.XDirection().X(), ax.XDirection().Y(), ax.XDirection().Z());
+  ring.e2 = glm::cross(ring.circle.normal, ring.e1);
+  ring.params = params;
+  ring.vertices = vertices;
+  ring.edges = edges;
+  ring.fixed = true;
+  for (const TopoDS_Edge& e : edges) ring.tolerance = std::max(ring.tolerance, BRep_Tool::Tolerance(e));
+}
+
+// Adds a vertex parameter to a free ring (kept sorted in its window) unless one is already there; returns the
+// parameter used.
+double add_vertex(Ring& ring, const Vec3& direction) {
+  const double t = ring.param_of(direction);
+  for (double p : ring.params)
+    if (std::abs(wrap_into(t - p + M_PI, 0.0) - M_PI) < kSameVertexAngle) return p;
+  if (ring.fixed) throw std::logic_error("brep builder: a vertex was added to a fixed ring");
+  if (ring.params.empty()) {
+    ring.params.push_back(t);
+    return t;
+  }
+  const double w = wrap_into(t, ring.params[0]);
+  ring.params.insert(std::upper_bound(ring.params.begin(), ring.params.end(), w), w);
+  return w;
+}
+
+// The parameter of `direction` among a ring's vertices, or NaN.
+double vertex_at(const Ring& ring, const Vec3& direction) {
+  const double t = ring.param_of(direction);
+  for (double p : ring.params)
+    if (std::abs(wrap_into(t - p + M_PI, 0.0) - M_PI) < kSameVertexAngle) return p;
+  return std::nan("");
+}
+
+// Creates the vertices and edges of a free ring from its parameters (its curve and frame set).
+void make_ring_edges(const BRep_Builder& b, Ring& ring) {
+  ring.vertices.clear();
+  ring.edges.clear();
+  for (double p : ring.params) ring.vertices.push_back(make_vertex(b, ring.curve->Value(p), ring.tolerance));
+  for (std::size_t k = 0; k < ring.params.size(); ++k) {
+    TopoDS_Edge e;
+    b.MakeEdge(e, ring.curve, ring.tolerance);
+    b.Add(e, ring.vertices[k].Oriented(TopAbs_FORWARD));
+    b.Add(e, ring.vertices[(k + 1) % ring.params.size()].Oriented(TopAbs_REVERSED));
+    b.Range(e, ring.params[k], ring.edge_end(k));
+    ring.edges.push_back(e);
+  }
+}
+
+}  // namespace
+
+// Work units of build_brep_pieces: laying out a distinct hub shape (or building its core) costs about as much as
+// this many spherical faces; a spherical face about two conical ones.
+constexpr std::int64_t kShapeUnits = 20;
+constexpr std::int64_t kHubUnits = 2;
+constexpr std::int64_t kBeamUnits = 1;
+
+BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selection, CutEdges& cut_edges,
+                             Progress& progress) {
+  if (static_cast<std::int64_t>(selection.balls.size()) != f.ball_count() ||
+      static_cast<std::int64_t>(selection.beams.size()) != f.beam_count() ||
+      (!selection.open_cuts.empty() && static_cast<std::int64_t>(selection.open_cuts.size()) != f.beam_count()) ||
+      (!selection.split.empty() && static_cast<std::int64_t>(selection.split.size()) != f.beam_count()))
+    fail_input("selection", "needs one flag per ball and per beam");
+  const auto start = std::chrono::steady_clock::now();
+  {
+    std::uint64_t faces = 0;
+    for (char b : selection.balls) faces += b ? 1 : 0;
+    for (char b : selection.beams) faces += b ? 2 : 0;
+    require_memory(faces * kBytesPerFace, "the B-rep of " + std::to_string(faces) + " faces");
+  }
+  BrepPieces out;
+  const std::vector<BeamFrustum> frustums = selected_frustums(f, selection);
+  const std::vector<char> absorbed = absorbed_balls(f, frustums);
+  std::vector<char> ball_built(f.ball_count());
+  for (std::int64_t i = 0; i < f.ball_count(); ++i) ball_built[i] = selection.balls[i] && !absorbed[i];
+
+  std::vector<BeamWork> beams(f.beam_count());
+  for (std::int64_t e = 0; e < f.beam_count(); ++e) {
+    if (!selection.beams[e] || !frustums[e].exists) continue;
+    const bool a = ball_built[f.beams[e].a], b = ball_built[f.beams[e].b];
+    const bool split = !selection.split.empty() && selection.split[e];
+    beams[e].kind = a && b ? (split ? BeamKind::Split : BeamKind::Whole)
+                           : a ? BeamKind::HalfA : b ? BeamKind::HalfB : BeamKind::None;
+  }
+  // Hubs, their geometry, and whether their exit circles keep apart (clean) or overlap (a core).
+  std::vector<HubWork> hubs;
+  std::vector<HubGeometry> geometry;
+  for (std::int64_t i = 0; i < f.ball_count(); ++i) {
+    if (!ball_built[i]) continue;
+    HubWork h;
+    h.ball = i;
+    HubGeometry g = hub_geometry(f, frustums, i, [&](std::int64_t e) { return beams[e].kind != BeamKind::None; },
+                                 h.stumps);
+    h.kind = g.kind;
+    for (std::size_t s = 0; s < h.stumps.size(); ++s) {
+      const auto [e, end] = h.stumps[s];
+      EndCircle& ec = beams[e].end[end];
+      ec.hub = static_cast<std::int64_t>(hubs.size());
+      ec.slot = static_cast<int>(s);
+      ec.circle = g.exits[s];
+      ec.axial = end == 0 ? frustums[e].exit_a : frustums[e].exit_b;
+    }
+    hubs.push_back(std::move(h));
+    geometry.push_back(std::move(g));
+  }
+  progress.check();
+  const HubCatalog catalog = catalog_hubs(geometry);
+  std::vector<ShapeWork> shapes(catalog.shapes.size());
+  {
+    std::int64_t built_beams = 0;
+    for (const BeamWork& w : beams) built_beams += w.kind != BeamKind::None;
+    progress.set_total(kShapeUnits * static_cast<std::int64_t>(shapes.size()) +
+                       kHubUnits * static_cast<std::int64_t>(hubs.size()) + kBeamUnits * built_beams + 1);
+  }
+  tbb::parallel_for(std::size_t(0), shapes.size(), [&](std::size_t s) {
+    progress.check();
+    ShapeWork& w = shapes[s];
+    const std::int64_t rep = catalog.representatives[s];
+    if (hubs[rep].kind == 0) {
+      w.layout = layout_sphere(catalog.shapes[s], selection.seams);
+      w.pcurves.resize(w.layout.circles.size());
+      for (std::size_t c = 0; c < w.layout.circles.size(); ++c)
+        for (const CircleArc& arc : w.layout.circles[c].arcs) {
+          w.pcurves[c].push_back(approximate_arc_pcurve(w.layout, static_cast<int>(c), arc));
+          w.max_error = std::max(w.max_error, w.pcurves[c].back().max_error);
+        }
+      progress.advance(kShapeUnits);
+      return;
+    }
+    const std::vector<CoreStump> stumps = core_stumps(catalog.shapes[s], geometry[rep].extras);
+    const CoreKind kind = core_kind(hubs[rep].kind);
+    w.core = build_hub_core(stumps, kind, place_collars(stumps, kind, kMaxCollarPosition));
+    progress.advance(kShapeUnits);
+  });
+  out.stats.layout_seconds = seconds_since(start);
+  const auto topology_start = std::chrono::steady_clock::now();
+  const BRep_Builder builder;
+
+  // Core hubs: place a copy of their core, and read their collars as fixed rings.
+  tbb::parallel_for(std::size_t(0), hubs.size(), [&](std::size_t h) {
+    HubWork& hub = hubs[h];
+    if (hub.kind == 0) return;
+    progress.check();
+    const HubPlacement& place = catalog.placements[h];
+    const HubCore& core = *shapes[place.shape].core;
+    const Ball& ball = f.balls[hub.ball];
+    BRepBuilderAPI_Transform copy(core.faces, placement_transform(ball, place.rotation), Standard_True);
+    ShapeFix_ShapeTolerance().LimitTolerance(copy.Shape(), kBrepTolerance, 0.0);
+    for (TopExp_Explorer x(copy.Shape(), TopAbs_FACE); x.More(); x.Next()) hub.faces.push_back(TopoDS::Face(x.Current()));
+    for (std::size_t s = 0; s < hub.stumps.size(); ++s) {
+      EndCircle& ec = beams[hub.stumps[s].first].end[hub.stumps[s].second];
+      const TopoDS_Edge collar = TopoDS::Edge(copy.ModifiedShape(core.collars[s]));
+      Standard_Real first, last;
+      Handle(Geom_Circle) curve = Handle(Geom_Circle)::DownCast(BRep_Tool::Curve(collar, first, last));
+      if (curve.IsNull()) throw std::runtime_error("brep builder: a core's collar is not a circle");
+      TopoDS_Vertex v;
+      for (TopExp_Explorer x(collar, TopAbs_VERTEX); x.More(); x.Next()) v = TopoDS::Vertex(x.Current());
+      ring_from_edges(ec, curve, {first}, {v}, {collar});
+      ec.axial = core.collar_position[s] * ball.radius;
+      const BeamFrustum& fr = frustums[hub.stumps[s].first];
+      const double to_cut = hub.stumps[s].second == 0 ? fr.cut_position() : fr.cone.length - fr.cut_position();
+      if (!(ec.axial < to_cut * (1.0 - 1e-9)))
+        fail_input("hub", "ball " + std::to_string(hub.ball) + ": beam " + std::to_string(hub.stumps[s].first) +
+                              " is too short for the collar its crowded hub needs (collar at " +
+                              std::to_string(ec.axial) + ", cut at " + std::to_string(to_cut) + ")");
+    }
+  });
+
+  // Frames of clean hubs' circles, and each beam's plan: its rings from end a to end b and the seam of every
+  // segment. A seam must leave both rings of its segment at a vertex: free rings (clean exit circles, new cuts)
+  // take a vertex where it is needed; two fixed rings with no common vertex get a joint between them.
+  tbb::parallel_for(std::int64_t(0), f.beam_count(), [&](std::int64_t e) {
+    BeamWork& w = beams[e];
+    if (w.kind == BeamKind::None) return;
+    if (e % 64 == 0) progress.check();
+    for (EndCircle& ec : w.end) {
+      if (ec.hub < 0 || hubs[ec.hub].kind != 0) continue;
+      const HubPlacement& place = catalog.placements[ec.hub];
+      const CircleLayout& cl = shapes[place.shape].layout.circles[ec.slot];
+      const Vec3 n = ec.circle.normal, e1 = place.rotation * cl.e1;
+      ec.e1 = glm::normalize(e1 - glm::dot(e1, n) * n);
+      ec.e2 = glm::cross(n, ec.e1);
+      ec.params = cl.own_vertices;
+    }
+    const BeamFrustum& fr = frustums[e];
+    const bool cut = w.kind != BeamKind::Whole;
+    if (cut) {
+      auto found = cut_edges.find(e);
+      if (found != cut_edges.end()) {
+        const CutCircle& c = found->second;
+        ring_from_edges(w.cut, c.curve, c.params, c.vertices, c.edges);
+      } else {
+        const Circle cc = fr.cut_circle();
+        w.cut.circle = cc;
+        w.cut.e1 = any_perpendicular(cc.normal);
+        w.cut.e2 = glm::cross(cc.normal, w.cut.e1);
+        w.cut_is_new = true;
+      }
+    }
+    const Vec3 axis = fr.cone.axis;
+    switch (w.kind) {
+      case BeamKind::Whole: w.plan.rings = {0, 1}; break;
+      case BeamKind::HalfA: w.plan.rings = {0, 2}; break;
+      case BeamKind::HalfB: w.plan.rings = {2, 1}; break;
+      default: w.plan.rings = {0, 2, 1}; break;
+    }
+    auto flat = [&](const Vec3& d) { return glm::normalize(d - glm::dot(d, axis) * axis); };
+    std::vector<int> rings = w.plan.rings;
+    std::vector<int> planned;
+    std::vector<Vec3> seams;
+    for (std::size_t k = 0; k + 1 < rings.size(); ++k) {
+      Ring& p = w.ring(rings[k]);
+      Ring& q = w.ring(rings[k + 1]);
+      if (planned.empty()) planned.push_back(rings[k]);
+      if (p.fixed && q.fixed) {
+        // A common vertex, or a joint between them.
+        bool found = false;
+        for (double t : p.params) {
+          const Vec3 d = flat(p.direction_of(t));
+          if (!std::isnan(vertex_at(q, d))) {
+            seams.push_back(d);
+            found = true;
+            break;
+          }
+        }
+        if (!found) {
+          Ring joint;
+          w.joints.push_back(joint);
+          const int id = 3 + static_cast<int>(w.joints.size()) - 1;
+          seams.push_back(flat(p.direction_of(p.params[0])));
+          seams.push_back(flat(q.direction_of(q.params[0])));
+          planned.push_back(id);
+        }
+      } else if (p.fixed || (!q.fixed && !p.params.empty())) {
+        const Vec3 d = flat(p.direction_of(p.params[0]));
+        seams.push_back(d);
+        add_vertex(q, d);
+      } else {
+        if (q.params.empty()) throw std::logic_error("brep builder: a segment between two rings with no vertex");
+        const Vec3 d = flat(q.direction_of(q.params[0]));
+        seams.push_back(d);
+        add_vertex(p, d);
+      }
+      planned.push_back(rings[k + 1]);
+    }
+    w.plan.rings = planned;
+    w.plan.seam = seams;
+  });
+
+  // Spherical faces of clean hubs.
+  tbb::parallel_for(std::size_t(0), hubs.size(), [&](std::size_t h) {
+    progress.advance(kHubUnits);
+    if (hubs[h].kind != 0) return;
+    const HubPlacement& place = catalog.placements[h];
+    build_sphere_face(builder, f.balls[hubs[h].ball], place, shapes[place.shape], hubs[h], beams);
+  });
+  // Conical faces, cuts, joints, caps.
+  tbb::parallel_for(std::int64_t(0), f.beam_count(), [&](std::int64_t e) {
+    BeamWork& w = beams[e];
+    if (w.kind == BeamKind::None) return;
+    progress.advance(kBeamUnits);
+    const BeamFrustum& fr = frustums[e];
+    const double to_v = 1.0 / fr.cone.cos_phi;
+    const Vec3 axis = fr.cone.axis;
+    // Cone position v of each ring (the cone is anchored at the exit circle of node a).
+    auto v_of = [&](int id) {
+      if (id == 0) return (w.end[0].axial - fr.exit_a) * to_v;
+      if (id == 1) return (fr.cone.length - w.end[1].axial - fr.exit_a) * to_v;
+      if (id == 2) return (fr.cut_position() - fr.exit_a) * to_v;
+      return 0.0;
+    };
+    std::vector<double> v(w.plan.rings.size());
+    for (std::size_t k = 0; k < v.size(); ++k) v[k] = v_of(w.plan.rings[k]);
+    for (std::size_t k = 0; k < v.size(); ++k)
+      if (w.plan.rings[k] >= 3) v[k] = 0.5 * (v[k - 1] + v[k + 1]);
+    for (std::size_t k = 0; k + 1 < v.size(); ++k)
+      if (!(v[k] < v[k + 1]))
+        fail_input("beam", std::to_string(e) + " is too short for the rings its hubs put on it");
+    // New cuts and joints: circles on the cone with the planned vertices.
+    for (std::size_t k = 0; k < w.plan.rings.size(); ++k) {
+      const int id = w.plan.rings[k];
+      if (!(id >= 3 || (id == 2 && w.cut_is_new))) continue;
+      Ring& r = w.ring(id);
+      const double x = fr.exit_a + v[k] * fr.cone.cos_phi;
+      r.circle = {fr.cone.a + x * axis, axis, fr.cone.radius_at(x)};
+      if (id >= 3) {
+        // A joint carries the seams of both its segments.
+        r.e1 = w.plan.seam[k - 1];
+        r.e2 = glm::cross(axis, r.e1);
+        r.params.clear();
+        add_vertex(r, w.plan.seam[k - 1]);
+        add_vertex(r, w.plan.seam[k]);
+      }
+      r.curve = new Geom_Circle(gp_Ax2(pnt(r.circle.center), dir(axis), dir(r.e1)), r.circle.radius);
+      make_ring_edges(builder, r);
+    }
+    // One conical face per segment.
+    double cut_v = std::nan("");
+    for (std::size_t k = 0; k < w.plan.rings.size(); ++k)
+      if (w.plan.rings[k] == 2) cut_v = v[k];
+    for (std::size_t k = 0; k + 1 < w.plan.rings.size(); ++k) {
+      auto station = [&](std::size_t at) {
+        const Ring& r = w.ring(w.plan.rings[at]);
+        Station st;
+        st.edges = &r.edges;
+        st.params = &r.params;
+        st.seam_param = vertex_at(r, w.plan.seam[k]);
+        if (std::isnan(st.seam_param)) throw std::logic_error("brep builder: a seam misses its ring's vertices");
+        const std::size_t idx = std::find(r.params.begin(), r.params.end(), st.seam_param) - r.params.begin();
+        st.seam_vertex = r.vertices[idx];
+        st.sign = glm::dot(r.circle.normal, axis) > 0.0 ? 1.0 : -1.0;
+        st.v = v[at];
+        st.tolerance = r.tolerance;
+        return st;
+      };
+      TopoDS_Face face;
+      build_cone_face(builder, fr, w.plan.seam[k], station(k), station(k + 1), face);
+      w.cones.push_back(face);
+      w.cone_side.push_back(std::isnan(cut_v) ? 0 : (v[k + 1] <= cut_v ? 0 : 1));
+    }
+    if (w.kind != BeamKind::Whole && (selection.open_cuts.empty() || !selection.open_cuts[e])) {
+      const Ring& c = w.cut;
+      Handle(Geom_Plane) plane = new Geom_Plane(gp_Ax3(pnt(c.circle.center), dir(c.circle.normal), dir(c.e1)));
+      Handle(Geom2d_Circle) pcurve = new Geom2d_Circle(gp_Ax2d(gp_Pnt2d(0, 0), gp_Dir2d(1, 0)), c.circle.radius);
+      const bool side_a = w.kind == BeamKind::HalfA || w.kind == BeamKind::Split;
+      const bool side_b = w.kind == BeamKind::HalfB || w.kind == BeamKind::Split;
+      for (int side = 0; side < 2; ++side) {
+        if (!(side == 0 ? side_a : side_b)) continue;
+        TopoDS_Face& cap = w.cap[side];
+        builder.MakeFace(cap, plane, kBrepTolerance);
+        for (std::size_t k = 0; k < c.edges.size(); ++k) {
+          builder.UpdateEdge(c.edges[k], pcurve, cap, c.tolerance);
+          builder.Range(c.edges[k], c.params[k], c.edge_end(k));
+        }
+        TopoDS_Wire wire;
+        builder.MakeWire(wire);
+        // The cut's normal points along the beam (from a to b): its edges run counterclockwise around it.
+        const bool along = glm::dot(c.circle.normal, axis) > 0.0;
+        for (const TopoDS_Edge& edge : c.edges) builder.Add(wire, edge.Oriented(along ? TopAbs_FORWARD : TopAbs_REVERSED));
+        wire.Closed(true);
+        builder.Add(cap, wire);
+        // The disk faces away from the half it closes.
+        if (side == 1) cap.Orientation(TopAbs_REVERSED);
+      }
+    }
+  });
+
+  progress.check();  // the last chance to stop: cut_edges changes below
+  for (const HubWork& h : hubs) {
+    for (const TopoDS_Face& face : h.faces) {
+      out.faces.push_back(face);
+      out.face_owner.push_back(h.ball);
+    }
+    out.stats.core_hubs += h.kind != 0;
+  }
+  for (std::int64_t e = 0; e < f.beam_count(); ++e) {
+    BeamWork& w = beams[e];
+    if (w.kind == BeamKind::None) continue;
+    ++out.stats.beams;
+    for (std::size_t k = 0; k < w.cones.size(); ++k) {
+      out.faces.push_back(w.cones[k]);
+      out.face_owner.push_back(w.cone_side[k] == 0 && w.kind != BeamKind::HalfB ? f.beams[e].a : f.beams[e].b);
+    }
+    for (int side = 0; side < 2; ++side) {
+      if (w.cap[side].IsNull()) continue;
+      out.faces.push_back(w.cap[side]);
+      out.face_owner.push_back(side == 0 ? f.beams[e].a : f.beams[e].b);
+      out.caps.push_back({e, side, w.cap[side]});
+      ++out.stats.cut_caps;
+    }
+    out.stats.joints += static_cast<std::int64_t>(w.joints.size());
+    if (w.cut_is_new) cut_edges.emplace(e, CutCircle{w.cut.curve, w.cut.params, w.cut.vertices, w.cut.edges});
+  }
+  out.stats.balls = static_cast<std::int64_t>(hubs.size());
+  out.stats.faces = static_cast<std::int64_t>(out.faces.size());
+  out.stats.distinct_hubs = static_cast<std::int64_t>(shapes.size());
+  for (const ShapeWork& w : shapes) {
+    out.stats.distinct_cores += w.core != nullptr;
+    for (const CircleLayout& c : w.layout.circles) out.stats.seam_crossing_circles += c.role != CircleRole::Inner;
+  }
+  out.stats.topology_seconds = seconds_since(topology_start);
+  progress.finish();
+  return out;
+}
+
+std::vector<double> stump_starts(const FlatLattice& f, const std::vector<BeamFrustum>& frustums,
+                                 const std::vector<char>& beams, std::int64_t ball) {
+  if (static_cast<std::int64_t>(frustums.size()) != f.beam_count() ||
+      static_cast<std::int64_t>(beams.size()) != f.beam_count())
+    fail_input("beams", "stump_starts needs one frustum and one flag per beam");
+  if (ball < 0 || ball >= f.ball_count()) fail_input("ball", std::to_string(ball) + " is not a ball of the lattice");
+  std::vector<std::pair<std::int64_t, int>> stumps;
+  const HubGeometry g =
+      hub_geometry(f, frustums, ball, [&](std::int64_t e) { return beams[e] && frustums[e].exists; }, stumps);
+  std::vector<double> starts(f.degree(ball), std::nan(""));
+  if (g.kind == 0) {
+    for (const auto& [e, end] : stumps)
+      starts[f.incident_slot(ball, e)] = end == 0 ? frustums[e].exit_a : frustums[e].exit_b;
+    return starts;
+  }
+  // The collars as the core's build places them (in ball radii), from the caps in the world frame.
+  const std::vector<double> collars =
+      place_collars(core_stumps(canonical_caps(g, Mat3(1.0)), g.extras), core_kind(g.kind), kMaxCollarPosition);
+  for (std::size_t s = 0; s < stumps.size(); ++s)
+    starts[f.incident_slot(ball, stumps[s].first)] = collars[s] * g.ball.radius;
+  return starts;
+}
+
+TopoDS_Shape solids_from_faces(const std::vector<TopoDS_Face>& faces, Progress& progress) {
+  const std::int64_t n = static_cast<std::int64_t>(faces.size());
+  std::vector<std::int64_t> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](std::int64_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  std::unordered_map<const void*, std::int64_t> first_face;
+  first_face.reserve(static_cast<std::size_t>(3 * n));
+  // Units: two per face for the grouping, one per face for the shells, the rest (solids, voids) in finish().
+  progress.set_total(3 * n + 1);
+  constexpr std::int64_t kChunk = 1024;
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (i % kChunk == kChunk - 1) progress.advance(2 * kChunk);
+    for (TopExp_Explorer x(faces[i], TopAbs_EDGE); x.More(); x.Next()) {
+      const void* key = x.Current().TShape().get();
+      auto [it, inserted] = first_face.emplace(key, i);
+      if (!inserted) parent[find(i)] = find(it->second);
+    }
+  }
+  progress.advance(2 * (n % kChunk));
+  std::unordered_map<std::int64_t, std::size_t> shell_of;
+  std::vector<TopoDS_Shell> shells;
+  const BRep_Builder b;
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (i % kChunk == kChunk - 1) progress.advance(kChunk);
+    const std::int64_t root = find(i);
+    auto [it, inserted] = shell_of.emplace(root, shells.size());
+    if (inserted) {
+      shells.emplace_back();
+      b.MakeShell(shells.back());
+    }
+    b.Add(shells[it->second], faces[i]);
+  }
+  progress.advance(n % kChunk);
+  // A shell whose faces point inward bounds a void (the inside of a skin): it joins the solid around it.
+  std::vector<TopoDS_Solid> solids;
+  std::vector<TopoDS_Shell> voids;
+  for (TopoDS_Shell& s : shells) {
+    progress.check();
+    s.Closed(true);
+    TopoDS_Solid solid;
+    b.MakeSolid(solid);
+    b.Add(solid, s);
+    BRepClass3d_SolidClassifier classifier(solid);
+    classifier.PerformInfinitePoint(kBrepTolerance);
+    if (classifier.State() == TopAbs_IN)
+      voids.push_back(s);
+    else
+      solids.push_back(solid);
+  }
+  for (const TopoDS_Shell& v : voids) {
+    std::size_t host = 0;
+    if (solids.size() > 1) {
+      TopExp_Explorer x(v, TopAbs_VERTEX);
+      const gp_Pnt p = BRep_Tool::Pnt(TopoDS::Vertex(x.Current()));
+      for (std::size_t k = 0; k < solids.size(); ++k) {
+        BRepClass3d_SolidClassifier c(solids[k], p, kBrepTolerance);
+        if (c.State() == TopAbs_IN) host = k;
+      }
+    }
+    if (solids.empty()) throw std::runtime_error("solids_from_faces: a void shell with no solid around it");
+    b.Add(solids[host], v);
+  }
+  progress.finish();
+  if (solids.size() == 1) return solids[0];
+  TopoDS_Compound compound;
+  b.MakeCompound(compound);
+  for (const TopoDS_Solid& s : solids) b.Add(compound, s);
+  return compound;
+}
+
+LatticeBrep build_lattice_brep(const FlatLattice& lattice, SeamPreference seams, Progress& progress) {
+  // Units: the clean check 5, the faces 40, the solids 55 (measured shares, roughly: grouping the faces into
+  // shells and classifying them costs more than building them).
+  progress.set_total(100);
+  // Overlapping exit circles on a ball are the business of hub cores; elements meeting foreign ones are not.
+  CleanCheckOptions options;
+  options.skip_circle_overlaps = true;
+  const CleanReport report = check_clean(lattice, options);
+  if (!report.clean()) {
+    std::ostringstream os;
+    os << "is not clean (" << report.issue_count << " issue" << (report.issue_count == 1 ? "" : "s") << "): ";
+    for (std::size_t i = 0; i < std::min<std::size_t>(3, report.issues.size()); ++i)
+      os << (i ? "; " : "") << report.issues[i].describe();
+    if (report.issue_count > 3) os << "; ...";
+    fail_input("lattice", os.str());
+  }
+  CutEdges cuts;
+  BrepSelection selection = BrepSelection::everything(lattice);
+  selection.seams = seams;
+  progress.advance(5);
+  BrepPieces pieces;
+  {
+    Progress part(progress, 40);
+    pieces = build_brep_pieces(lattice, selection, cuts, part);
+  }
+  LatticeBrep out;
+  {
+    Progress part(progress, 55);
+    out.shape = solids_from_faces(pieces.faces, part);
+  }
+  out.stats = pieces.stats;
+  progress.finish();
+  return out;
+}
+
+LatticeBrep build_lattice_brep(const Lattice& lattice) { return build_lattice_brep(flatten(lattice)); }
+
+}  // namespace steady

@@ -1,0 +1,111 @@
+#include "steady/brep/brep_io.hpp"
+
+#include <BRepAdaptor_Surface.hxx>
+#include <TopoDS.hxx>
+
+#include <BRepCheck.hxx>
+#include <BRepCheck_Analyzer.hxx>
+#include <BRepCheck_ListOfStatus.hxx>
+#include <BRepCheck_Result.hxx>
+#include <BRepGProp.hxx>
+#include <BRepTools.hxx>
+#include <BRep_Builder.hxx>
+#include <GProp_GProps.hxx>
+#include <TopExp.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+
+#include <sstream>
+
+#include "brep/occ_progress.hpp"
+#include "steady/core/errors.hpp"
+
+namespace steady {
+
+std::string brep_to_text(const TopoDS_Shape& shape, Progress& progress) {
+  std::ostringstream os;
+  OccProgress occ(progress);
+  BRepTools::Write(shape, os, occ.range());
+  occ.finish();
+  return os.str();
+}
+
+TopoDS_Shape brep_from_text(const std::string& text, const std::string& field) {
+  TopoDS_Shape shape;
+  std::istringstream is(text);
+  const BRep_Builder builder;
+  try {
+    BRepTools::Read(shape, is, builder);
+  } catch (const Standard_Failure& e) {
+    fail_input(field, std::string("is not BREP text (") + e.GetMessageString() + ")");
+  }
+  if (shape.IsNull()) fail_input(field, "is not BREP text, or holds no shape");
+  return shape;
+}
+
+// The kind of a face's surface, for error messages.
+const char* surface_name(const TopoDS_Face& face) {
+  switch (BRepAdaptor_Surface(face, Standard_False).GetType()) {
+    case GeomAbs_Plane: return "plane";
+    case GeomAbs_Cylinder: return "cylinder";
+    case GeomAbs_Cone: return "cone";
+    case GeomAbs_Sphere: return "sphere";
+    case GeomAbs_Torus: return "torus";
+    default: return "free-form surface";
+  }
+}
+
+bool is_valid(const TopoDS_Shape& shape) {
+  // The parallel analyzer checks faces on all cores; the verdict is the same.
+  return !shape.IsNull() && BRepCheck_Analyzer(shape, Standard_True, Standard_True).IsValid();
+}
+
+std::string validity_report(const TopoDS_Shape& shape, int max_lines) {
+  if (shape.IsNull()) return "null shape";
+  BRepCheck_Analyzer analyzer(shape);
+  if (analyzer.IsValid()) return "";
+  static const char* kNames[] = {"compound", "compsolid", "solid", "shell", "face", "wire", "edge", "vertex"};
+  std::ostringstream os;
+  int lines = 0;
+  for (TopAbs_ShapeEnum type : {TopAbs_SOLID, TopAbs_SHELL, TopAbs_FACE, TopAbs_WIRE, TopAbs_EDGE, TopAbs_VERTEX}) {
+    TopTools_IndexedMapOfShape map;
+    TopExp::MapShapes(shape, type, map);
+    for (int i = 1; i <= map.Extent() && lines < max_lines; ++i) {
+      const Handle(BRepCheck_Result) r = analyzer.Result(map(i));
+      if (r.IsNull()) continue;
+      auto report = [&](const BRepCheck_ListOfStatus& list) {
+        for (auto it = list.cbegin(); it != list.cend() && lines < max_lines; ++it) {
+          if (*it == BRepCheck_NoError) continue;
+          std::ostringstream status;
+          BRepCheck::Print(*it, status);
+          std::string s = status.str();
+          while (!s.empty() && (s.back() == '\n' || s.back() == '\r')) s.pop_back();
+          os << kNames[type] << " #" << i;
+          if (type == TopAbs_FACE) os << " (" << surface_name(TopoDS::Face(map(i))) << ")";
+          os << ": " << s << "\n";
+          ++lines;
+        }
+      };
+      report(r->Status());
+      for (r->InitContextIterator(); r->MoreShapeInContext(); r->NextShapeInContext()) report(r->StatusOnShape());
+    }
+  }
+  const std::string s = os.str();
+  return s.empty() ? "invalid (no sub-shape status)" : s;
+}
+
+double shape_volume(const TopoDS_Shape& shape) {
+  GProp_GProps props;
+  BRepGProp::VolumeProperties(shape, props);
+  return props.Mass();
+}
+
+std::int64_t count_subshapes(const TopoDS_Shape& shape, int type) {
+  TopTools_IndexedMapOfShape map;
+  TopExp::MapShapes(shape, static_cast<TopAbs_ShapeEnum>(type), map);
+  return map.Extent();
+}
+
+std::int64_t face_count(const TopoDS_Shape& shape) { return count_subshapes(shape, TopAbs_FACE); }
+std::int64_t solid_count(const TopoDS_Shape& shape) { return count_subshapes(shape, TopAbs_SOLID); }
+
+}  // namespace steady

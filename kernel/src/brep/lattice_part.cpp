@@ -1,0 +1,66 @@
+#include "steady/brep/lattice_part.hpp"
+
+#include "steady/brep/brep_builder.hpp"
+#include "steady/brep/brep_io.hpp"
+#include "steady/core/errors.hpp"
+#include "steady/brep/step_assembly.hpp"
+
+namespace steady {
+
+namespace {
+
+TrimResult make_part(const FlatLattice& lattice, const LatticePartRequest& request, Progress& progress) {
+  TrimResult out;
+  if (!request.body_brep) {
+    if (request.trim.skin != 0.0) fail_input("skin", "needs a body to wrap");
+    out.part = out.lattice = build_lattice_brep(lattice, SeamPreference::FewestCrossings, progress).shape;
+    return out;
+  }
+  return trim_lattice(lattice, brep_from_text(*request.body_brep, "body"), request.trim, progress);
+}
+
+// Shares of the output's progress: the part, then its BREP text (quick) or its STEP file (translating and writing
+// a STEP file takes longer than building a part trimmed into a box; a curved body's Booleans take longer still).
+constexpr std::int64_t kPartUnits = 95, kTextUnits = 5;
+constexpr std::int64_t kStepPartUnits = 60, kStepFileUnits = 40;
+
+}  // namespace
+
+std::string lattice_part_brep(const FlatLattice& lattice, const LatticePartRequest& request, Progress& progress,
+                              TrimStats* stats) {
+  progress.set_total(kPartUnits + kTextUnits);
+  TrimResult r;
+  {
+    Progress part(progress, kPartUnits);
+    r = make_part(lattice, request, part);
+  }
+  if (stats) *stats = r.stats;
+  std::string text;
+  {
+    Progress part(progress, kTextUnits);
+    text = brep_to_text(r.part, part);
+  }
+  progress.finish();
+  return text;
+}
+
+void write_lattice_step(const std::string& path, const FlatLattice& lattice, const LatticePartRequest& request,
+                        const StepNames& names, Progress& progress) {
+  LatticePartRequest separate = request;
+  separate.trim.unite_skin = false;
+  progress.set_total(kStepPartUnits + kStepFileUnits);
+  TrimResult r;
+  {
+    Progress part(progress, kStepPartUnits);
+    r = make_part(lattice, separate, part);
+  }
+  std::vector<StepPart> parts = {{names.lattice, r.lattice, names.lattice_color, true}};
+  if (!r.skin.IsNull()) parts.push_back({names.skin, r.skin, names.skin_color, true});
+  {
+    Progress part(progress, kStepFileUnits);
+    write_step_assembly(path, parts, names.assembly, part);
+  }
+  progress.finish();
+}
+
+}  // namespace steady

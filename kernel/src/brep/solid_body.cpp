@@ -1,0 +1,129 @@
+#include "steady/brep/solid_body.hpp"
+
+#include <BRepBndLib.hxx>
+#include <BRepBuilderAPI_Copy.hxx>
+#include <BRepBuilderAPI_MakeVertex.hxx>
+#include <BRepClass3d_SolidClassifier.hxx>
+#include <BRepExtrema_DistShapeShape.hxx>
+#include <BRepMesh_IncrementalMesh.hxx>
+#include <BRep_Tool.hxx>
+#include <Bnd_Box.hxx>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Simple_cartesian.h>
+#include <Poly_Triangulation.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Vertex.hxx>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+#include "steady/brep/brep_io.hpp"
+#include "steady/core/errors.hpp"
+
+namespace steady {
+
+namespace {
+using Kernel = CGAL::Simple_cartesian<double>;
+using Triangle = Kernel::Triangle_3;
+using Primitive = CGAL::AABB_triangle_primitive<Kernel, std::vector<Triangle>::const_iterator>;
+using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
+
+// Edges bounding only one face (not seams, not degenerate): the shell is open there.
+int free_edge_count(const TopoDS_Shape& solid) {
+  TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
+  TopExp::MapShapesAndAncestors(solid, TopAbs_EDGE, TopAbs_FACE, edge_faces);
+  int free_edges = 0;
+  for (int i = 1; i <= edge_faces.Extent(); ++i) {
+    const TopoDS_Edge& e = TopoDS::Edge(edge_faces.FindKey(i));
+    if (BRep_Tool::Degenerated(e)) continue;
+    const TopTools_ListOfShape& faces = edge_faces(i);
+    if (faces.Extent() == 1 && !BRep_Tool::IsClosed(e, TopoDS::Face(faces.First()))) ++free_edges;
+  }
+  return free_edges;
+}
+}  // namespace
+
+struct SolidBody::Tree {
+  std::vector<Triangle> triangles;
+  steady::Tree tree;
+};
+
+SolidBody::SolidBody(const TopoDS_Shape& shape, const std::string& field) {
+  if (shape.IsNull()) fail_input(field, "is empty");
+  int solids = 0;
+  for (TopExp_Explorer x(shape, TopAbs_SOLID); x.More(); x.Next(), ++solids) solid_ = TopoDS::Solid(x.Current());
+  if (solids == 0) {
+    int faces = 0;
+    for (TopExp_Explorer x(shape, TopAbs_FACE); x.More(); x.Next()) ++faces;
+    fail_input(field, faces ? "is not a closed solid (it has " + std::to_string(faces) + " faces but no solid)"
+                            : "is not a solid (it has no faces)");
+  }
+  if (solids > 1) fail_input(field, "holds " + std::to_string(solids) + " solids; give one solid");
+  // Our own copy: the triangulation below is stored in it, never in the caller's shape.
+  solid_ = TopoDS::Solid(BRepBuilderAPI_Copy(solid_).Shape());
+  if (!is_valid(solid_)) fail_input(field, "is not a valid solid: " + validity_report(solid_, 3));
+  if (const int open = free_edge_count(solid_)) fail_input(field, "is not a closed solid (" + std::to_string(open) + " free edges)");
+  volume_ = shape_volume(solid_);
+  if (!(volume_ > 0.0)) fail_input(field, "has no positive volume (is it inside out?)");
+  Bnd_Box box;
+  BRepBndLib::Add(solid_, box);
+  double x0, y0, z0, x1, y1, z1;
+  box.Get(x0, y0, z0, x1, y1, z1);
+  bounds_ = {{x0, y0, z0}, {x1, y1, z1}};
+  const double deflection = kBodyMeshRelativeDeflection * size();
+  BRepMesh_IncrementalMesh mesh(solid_, deflection, Standard_False, 0.3, Standard_True);
+  slack_ = kBodyMeshDeflectionFactor * deflection;
+  tree_ = std::make_unique<Tree>();
+  for (TopExp_Explorer x(solid_, TopAbs_FACE); x.More(); x.Next()) {
+    const TopoDS_Face& face = TopoDS::Face(x.Current());
+    TopLoc_Location loc;
+    const Handle(Poly_Triangulation) tri = BRep_Tool::Triangulation(face, loc);
+    if (tri.IsNull()) fail_input(field, "has a face that cannot be triangulated");
+    const gp_Trsf t = loc.Transformation();
+    for (int i = 1; i <= tri->NbTriangles(); ++i) {
+      int a, b, c;
+      tri->Triangle(i).Get(a, b, c);
+      gp_Pnt p[3] = {tri->Node(a).Transformed(t), tri->Node(b).Transformed(t), tri->Node(c).Transformed(t)};
+      tree_->triangles.emplace_back(Kernel::Point_3(p[0].X(), p[0].Y(), p[0].Z()),
+                                    Kernel::Point_3(p[1].X(), p[1].Y(), p[1].Z()),
+                                    Kernel::Point_3(p[2].X(), p[2].Y(), p[2].Z()));
+    }
+  }
+  tree_->tree.insert(tree_->triangles.cbegin(), tree_->triangles.cend());
+  tree_->tree.build();
+  tree_->tree.accelerate_distance_queries();
+}
+
+SolidBody::~SolidBody() = default;
+SolidBody::SolidBody(SolidBody&&) noexcept = default;
+
+double SolidBody::distance_lower_bound(const Vec3& p) const {
+  const double d = std::sqrt(tree_->tree.squared_distance(Kernel::Point_3(p.x, p.y, p.z)));
+  return std::max(0.0, d - slack_);
+}
+
+double SolidBody::exact_distance(const Vec3& p) const {
+  // Measured to the shells: the distance to a solid counts as 0 inside it.
+  const TopoDS_Vertex v = BRepBuilderAPI_MakeVertex(gp_Pnt(p.x, p.y, p.z)).Vertex();
+  double best = std::numeric_limits<double>::infinity();
+  for (TopExp_Explorer x(solid_, TopAbs_SHELL); x.More(); x.Next()) {
+    BRepExtrema_DistShapeShape d(v, x.Current());
+    if (!d.IsDone()) throw std::runtime_error("BRepExtrema failed to measure a distance to the body");
+    best = std::min(best, d.Value());
+  }
+  return best;
+}
+
+bool SolidBody::contains(const Vec3& p) const {
+  BRepClass3d_SolidClassifier classifier(solid_, gp_Pnt(p.x, p.y, p.z), 1e-7);
+  return classifier.State() != TopAbs_OUT;
+}
+
+}  // namespace steady

@@ -1,0 +1,233 @@
+#include "steady/query/lattice_query.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "query/query_internal.hpp"
+#include "steady/core/errors.hpp"
+#include "steady/query/query_tolerance.hpp"
+
+namespace steady {
+
+const char* to_string(QueryMethod method) {
+  switch (method) {
+    case QueryMethod::Auto: return "auto";
+    case QueryMethod::Naive: return "naive";
+    case QueryMethod::Rows: return "rows";
+    case QueryMethod::Slabs: return "slabs";
+    case QueryMethod::Constant: return "constant";
+    case QueryMethod::Blocks: return "blocks";
+    case QueryMethod::PaperRows: return "rows-paper";
+    case QueryMethod::PaperSlabs: return "slabs-paper";
+  }
+  return "unknown";
+}
+
+QueryMethod query_method_from_string(const std::string& name, const std::string& field) {
+  for (QueryMethod m : {QueryMethod::Auto, QueryMethod::Naive, QueryMethod::Rows, QueryMethod::Slabs,
+                        QueryMethod::Constant, QueryMethod::Blocks, QueryMethod::PaperRows, QueryMethod::PaperSlabs})
+    if (name == to_string(m)) return m;
+  fail_input(field, "unknown query method '" + name +
+                        "' (auto, naive, rows, slabs, constant, blocks, rows-paper, slabs-paper)");
+}
+
+void validate_query_ball(const Ball& query, const std::string& field) {
+  // The common case without building any message.
+  if (std::isfinite(query.center.x) && std::isfinite(query.center.y) && std::isfinite(query.center.z) &&
+      std::isfinite(query.radius) && query.radius >= 0.0)
+    return;
+  for (int c = 0; c < 3; ++c) require_finite(query.center[c], field + ".center");
+  require_finite(query.radius, field + ".radius");
+  if (query.radius < 0.0) fail_input(field + ".radius", "must be >= 0 (got " + std::to_string(query.radius) + ")");
+}
+
+namespace detail {
+
+namespace {
+std::int64_t largest_offset(const Lattice& lattice) {
+  std::int64_t m = 1;
+  for (const BeamPattern& b : lattice.definition().beams)
+    m = std::max<std::int64_t>({m, std::abs(b.di), std::abs(b.dj), std::abs(b.dk)});
+  return m;
+}
+}  // namespace
+
+QueryState::QueryState(const Lattice& lat)
+    : lattice(lat), eval(lat, largest_offset(lat)), bounds(lat, largest_offset(lat)), margin(largest_offset(lat)) {
+  bound = bounds.lattice_bound();
+  length_scale = glm::length(bound.center) + bound.radius;
+  const Counts& c = lat.counts();
+  const auto& nodes = lat.definition().nodes;
+  for (const auto& n : nodes) node_templates.push_back({n.center, n.radius});
+  for (const BeamPattern& b : lat.definition().beams) {
+    const auto& a = nodes[static_cast<std::size_t>(b.from)];
+    const auto& e = nodes[static_cast<std::size_t>(b.to)];
+    beam_start_templates.push_back({a.center, b.has_radii() ? *b.from_radius : a.radius});
+    beam_end_templates.push_back({e.center, b.has_radii() ? *b.to_radius : e.radius});
+    const int d[3] = {b.di, b.dj, b.dk};
+    for (int a = 0; a < 3; ++a) {
+      reach[a][0] = std::min<std::int64_t>(reach[a][0], d[a]);
+      reach[a][1] = std::max<std::int64_t>(reach[a][1], d[a]);
+    }
+    IndexBlock s{std::max<std::int64_t>(0, -b.di), std::min<std::int64_t>(c.u, c.u - b.di),
+                 std::max<std::int64_t>(0, -b.dj), std::min<std::int64_t>(c.v, c.v - b.dj),
+                 std::max<std::int64_t>(0, -b.dk), std::min<std::int64_t>(c.w, c.w - b.dk)};
+    pattern_starts.push_back(s);
+  }
+  auto world = [&](const Similarity& step, std::int64_t count) {
+    return PowerTable(lat.placement() * step * lat.placement().inverse(), -margin, count - 1 + margin);
+  };
+  world_u = world(lat.step_u(), c.u);
+  world_v = world(lat.step_v(), c.v);
+  world_w = world(lat.step_w(), c.w);
+  const std::int64_t slots = c.u + 2 * margin;
+  if (slots * lat.node_count() <= kMaxPowerTableEntries) {
+    for (std::int64_t i = -margin; i < c.u + margin; ++i) {
+      const SimilarityTransform t = eval.u().at(i);
+      u_scales.push_back(t.scale);
+      for (const auto& n : nodes) u_nodes.push_back(t.apply_point(n.center));
+    }
+  }
+  prefix_offsets.emplace_back(0, 0);
+  for (const BeamPattern& b : lat.definition().beams) {
+    const std::pair<int, int> o(b.dj, b.dk);
+    auto it = std::find(prefix_offsets.begin(), prefix_offsets.end(), o);
+    if (it == prefix_offsets.end()) it = prefix_offsets.insert(prefix_offsets.end(), o);
+    pattern_prefix.push_back(static_cast<int>(it - prefix_offsets.begin()));
+  }
+  for (const auto& o : prefix_offsets) slab_prefixes.push_back(eval.row_prefix(o.first, o.second));
+  first_templates.fill(*this, slab_prefixes, 0);
+  detect_plan(*this);
+  auto extents = [](const RowMotion& m, const Ball& a, const Ball* b, std::array<Extent, kMaxRowMaps>& out) {
+    for (std::size_t x = 0; x < m.maps().size(); ++x) out[x] = b ? m.maps()[x].extent(a, *b) : m.maps()[x].extent(a);
+  };
+  for (std::size_t n = 0; n < first_templates.nodes.size(); ++n) {
+    TemplateExtents e;
+    extents(plan.constant_u, first_templates.nodes[n], nullptr, e.u);
+    extents(plan.constant_v, first_templates.nodes[n], nullptr, e.v);
+    extents(plan.constant_w, first_templates.nodes[n], nullptr, e.w);
+    constant_extents.push_back(e);
+  }
+  for (std::size_t p = 0; p < first_templates.beam_start.size(); ++p) {
+    TemplateExtents e;
+    const Ball& a = first_templates.beam_start[p];
+    const Ball& b = first_templates.beam_end[p];
+    extents(plan.constant_u, a, &b, e.u);
+    extents(plan.constant_v, a, &b, e.v);
+    extents(plan.constant_w, a, &b, e.w);
+    constant_extents.push_back(e);
+  }
+}
+
+namespace {
+thread_local std::vector<std::unique_ptr<Scratch>> g_scratch_pool;
+thread_local std::size_t g_scratch_depth = 0;
+}  // namespace
+
+ScratchLease::ScratchLease() {
+  if (g_scratch_depth == g_scratch_pool.size()) g_scratch_pool.push_back(std::make_unique<Scratch>());
+  scratch_ = g_scratch_pool[g_scratch_depth++].get();
+}
+
+ScratchLease::~ScratchLease() { --g_scratch_depth; }
+
+double QueryState::inflation(const Ball& query) const {
+  const Counts& c = lattice.counts();
+  const double steps = static_cast<double>(c.u) + static_cast<double>(c.v) + static_cast<double>(c.w);
+  return (kQueryInflation + kQueryInflationPerStep * steps) *
+         (length_scale + glm::length(query.center) + query.radius);
+}
+
+}  // namespace detail
+
+struct LatticeQuery::Impl {
+  detail::QueryState state;
+  explicit Impl(const Lattice& lattice) : state(lattice) {}
+};
+
+namespace {
+thread_local std::int64_t g_last_candidates = 0;
+}
+
+LatticeQuery::LatticeQuery(const Lattice& lattice) : impl_(std::make_unique<Impl>(lattice)) {}
+LatticeQuery::~LatticeQuery() = default;
+LatticeQuery::LatticeQuery(LatticeQuery&&) noexcept = default;
+
+const Lattice& LatticeQuery::lattice() const { return impl_->state.lattice; }
+const QueryPlan& LatticeQuery::plan() const { return impl_->state.plan; }
+const BlockBounds& LatticeQuery::block_bounds() const { return impl_->state.bounds; }
+const Ball& LatticeQuery::bound() const { return impl_->state.bound; }
+std::int64_t LatticeQuery::last_candidate_count() { return g_last_candidates; }
+
+QueryMethod LatticeQuery::resolve(QueryMethod method) const {
+  const QueryPlan& p = impl_->state.plan;
+  switch (method) {
+    case QueryMethod::Auto: return p.automatic;
+    case QueryMethod::Slabs:
+    case QueryMethod::PaperSlabs:
+      if (!p.slabs_valid) fail_input("method", std::string("'slabs' (O(u)) does not apply: ") + p.slabs_reason);
+      return method;
+    case QueryMethod::Constant:
+      if (!p.constant_valid)
+        fail_input("method", std::string("'constant' (O(1)) does not apply: ") + p.constant_reason);
+      return method;
+    default: return method;
+  }
+}
+
+void LatticeQuery::visit(const Ball& query, HitSink& sink, QueryMethod method) const {
+  validate_query_ball(query, "query");
+  const detail::QueryState& q = impl_->state;
+  const QueryMethod m = resolve(method);
+  detail::Probe probe{q, query, query, sink};
+  probe.inflated.radius = query.radius + q.inflation(query);
+  if (m == QueryMethod::Slabs || m == QueryMethod::PaperSlabs) probe.inflated.radius += q.plan.slabs_inflation;
+  if (m == QueryMethod::Constant) probe.inflated.radius += q.plan.constant_inflation;
+  g_last_candidates = 0;
+  // Outside the lattice's bound there is nothing to find (the naive path scans regardless: it is the oracle).
+  if (m != QueryMethod::Naive && distance_to_ball(query.center, q.bound) > probe.inflated.radius) return;
+  switch (m) {
+    case QueryMethod::Naive: detail::visit_naive(q, probe); break;
+    case QueryMethod::Rows: detail::visit_rows(q, probe, true); break;
+    case QueryMethod::PaperRows: detail::visit_rows(q, probe, false); break;
+    case QueryMethod::Slabs: detail::visit_slabs(q, probe, true); break;
+    case QueryMethod::PaperSlabs: detail::visit_slabs(q, probe, false); break;
+    case QueryMethod::Constant: detail::visit_constant(q, probe); break;
+    case QueryMethod::Blocks:
+    case QueryMethod::Auto: detail::visit_blocks(q, probe); break;
+  }
+  g_last_candidates = probe.candidates;
+}
+
+namespace {
+struct CollectSink : HitSink {
+  BallQueryResult result;
+  bool on_hit(const ElementHit& hit) override {
+    (hit.is_beam ? result.beams : result.balls).push_back(hit.index);
+    return true;
+  }
+};
+struct AnySink : HitSink {
+  bool found = false;
+  bool on_hit(const ElementHit&) override {
+    found = true;
+    return false;
+  }
+};
+}  // namespace
+
+BallQueryResult LatticeQuery::query_ball(const Ball& query, QueryMethod method) const {
+  CollectSink sink;
+  visit(query, sink, method);
+  std::sort(sink.result.balls.begin(), sink.result.balls.end());
+  std::sort(sink.result.beams.begin(), sink.result.beams.end());
+  return std::move(sink.result);
+}
+
+bool LatticeQuery::touches(const Ball& query, QueryMethod method) const {
+  AnySink sink;
+  visit(query, sink, method);
+  return sink.found;
+}
+
+}  // namespace steady
