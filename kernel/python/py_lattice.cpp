@@ -1,4 +1,4 @@
-// Python bindings of the steady brick lattice: thin conversions, bulk results as numpy arrays, the GIL
+// Python bindings of the lattice: thin conversions, bulk results as numpy arrays, the GIL
 // released while the kernel works.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -7,6 +7,7 @@
 #include "convert.hpp"
 #include "steady/lattice/lattice.hpp"
 #include "steady/lattice/lattice_io.hpp"
+#include "steady/lattice/table_layout.hpp"
 #include "steady/core/memory_budget.hpp"
 
 namespace steadypy {
@@ -30,19 +31,20 @@ Similarity required_similarity(const py::object& value, const char* name) {
   return optional_similarity(value, name);
 }
 
-steady::LatticeDefinition definition(py::handle nodes, py::handle beams, py::handle counts, const py::object& U,
-                                     const py::object& V, const py::object& W, const py::object& G,
-                                     py::handle omitted, steady::StepControl control) {
-  steady::LatticeDefinition d;
-  d.nodes = to_nodes(nodes);
-  d.beams = to_beams(beams);
-  d.counts = to_counts(counts);
-  d.u = {required_similarity(U, "U"), control};
-  d.v = {required_similarity(V, "V"), control};
-  d.w = {required_similarity(W, "W"), control};
-  d.placement = optional_similarity(G, "G");
-  d.omitted = to_omitted(omitted);
-  return d;
+Lattice steady_lattice(py::handle nodes, py::handle beams, py::handle counts, const py::object& U,
+                       const py::object& V, const py::object& W, const py::object& G, py::handle omitted,
+                       const std::string& order, steady::StepControl control) {
+  return Lattice::ordered(to_nodes(nodes), to_beams(beams), to_counts(counts), {required_similarity(U, "U"), control},
+                          {required_similarity(V, "V"), control}, {required_similarity(W, "W"), control},
+                          optional_similarity(G, "G"), steady::axis_order_from_string(order, "order"),
+                          to_omitted(omitted));
+}
+
+// The steady-brick view, or a ValueError saying the layout has no steps.
+const steady::SteadyBrick& steady_view(const Lattice& l, const char* what) {
+  const steady::SteadyBrick* view = l.layout().steady_brick();
+  if (!view) value_error(what, "the lattice's layout (" + l.layout().kind() + ") is not a steady brick: it has no steps");
+  return *view;
 }
 
 steady::NodeId node_id(std::int64_t i, std::int64_t j, std::int64_t k, int n) { return {i, j, k, n}; }
@@ -61,21 +63,33 @@ beams: list of (n1, di, dj, dk, n2) joining ball n1 of group (i, j, k) to ball n
 counts: (u, v, w). U, V, W: the steps between neighbouring groups. G: the placement (default identity).
 omitted: optional list of (i, j, k, n) nodes left out, with their beams.)doc")
       .def(py::init([](py::handle nodes, py::handle beams, py::handle counts, const py::object& U,
-                       const py::object& V, const py::object& W, const py::object& G, py::handle omitted) {
-             return Lattice(definition(nodes, beams, counts, U, V, W, G, omitted, steady::StepControl::Incremental));
+                       const py::object& V, const py::object& W, const py::object& G, py::handle omitted,
+                       const std::string& order) {
+             return steady_lattice(nodes, beams, counts, U, V, W, G, omitted, order, steady::StepControl::Incremental);
            }),
            py::arg("nodes"), py::arg("beams"), py::arg("counts"), py::arg("U"), py::arg("V"), py::arg("W"),
-           py::arg("G") = py::none(), py::arg("omitted") = py::none())
+           py::arg("G") = py::none(), py::arg("omitted") = py::none(), py::arg("order") = "UVW")
       .def_static(
           "interpolating",
           [](py::handle nodes, py::handle beams, py::handle counts, const py::object& U, const py::object& V,
-             const py::object& W, const py::object& G, py::handle omitted) {
-            return Lattice(definition(nodes, beams, counts, U, V, W, G, omitted, steady::StepControl::Cumulative));
+             const py::object& W, const py::object& G, py::handle omitted, const std::string& order) {
+            return steady_lattice(nodes, beams, counts, U, V, W, G, omitted, order, steady::StepControl::Cumulative);
           },
           py::arg("nodes"), py::arg("beams"), py::arg("counts"), py::arg("U_total"), py::arg("V_total"),
-          py::arg("W_total"), py::arg("G") = py::none(), py::arg("omitted") = py::none(),
+          py::arg("W_total"), py::arg("G") = py::none(), py::arg("omitted") = py::none(), py::arg("order") = "UVW",
           "A lattice whose U, V, W are given from the first group to the last of each direction; the steps are "
           "their 1/(count-1) powers.")
+      .def_static(
+          "from_table",
+          [](py::handle nodes, py::handle beams, py::handle counts, const std::vector<Similarity>& similarities,
+             py::handle omitted) {
+            const steady::Counts c = to_counts(counts);
+            return Lattice({to_nodes(nodes), to_beams(beams), steady::TableLayout::make(c, similarities),
+                            to_omitted(omitted)});
+          },
+          py::arg("nodes"), py::arg("beams"), py::arg("counts"), py::arg("similarities"), py::arg("omitted") = py::none(),
+          "A lattice whose groups are placed by a table: one Similarity per group, group (i, j, k) at index "
+          "(k * v + j) * u + i. Not steady: queries and properties take their general (slower) paths.")
       .def_static(
           "from_frames",
           [](py::handle nodes, py::handle beams, py::handle counts, py::handle base, py::handle end_u,
@@ -149,12 +163,22 @@ omitted: optional list of (i, j, k, n) nodes left out, with their beams.)doc")
                                for (const auto& o : l.definition().omitted) out.append(py::make_tuple(o.i, o.j, o.k, o.n));
                                return out;
                              })
-      .def_property_readonly("U", &Lattice::step_u, "The step between neighbouring groups along i.")
-      .def_property_readonly("V", &Lattice::step_v)
-      .def_property_readonly("W", &Lattice::step_w)
-      .def_property_readonly("G", &Lattice::placement)
+      .def_property_readonly("layout", [](const Lattice& l) { return l.layout().kind(); },
+                             "The layout's kind: 'steady-brick', 'any-order-brick' or 'table'.")
+      .def_property_readonly(
+          "order",
+          [](const Lattice& l) { return steady::to_string(steady_view(l, "order").axes); },
+          "The order the steps apply in, first to last ('UVW' for G W^k V^j U^i).")
+      .def_property_readonly(
+          "U", [](const Lattice& l) { return steady_view(l, "U").step_along(0); },
+          "The step between neighbouring groups along i.")
+      .def_property_readonly("V", [](const Lattice& l) { return steady_view(l, "V").step_along(1); })
+      .def_property_readonly("W", [](const Lattice& l) { return steady_view(l, "W").step_along(2); })
+      .def_property_readonly("G", [](const Lattice& l) { return steady_view(l, "G").placement; })
+      .def("placed", &Lattice::placed, py::arg("G"),
+           "The same lattice moved by the similarity G as a whole (group (i, j, k) placed by G o S(i, j, k)).")
       .def("group", &Lattice::group_similarity, py::arg("i"), py::arg("j"), py::arg("k"),
-           "The similarity G W^k V^j U^i placing group (i, j, k).")
+           "The similarity placing group (i, j, k) (G W^k V^j U^i for the steps applied in the U V W order).")
       .def(
           "ball",
           [](const Lattice& l, std::int64_t i, std::int64_t j, std::int64_t k, int n) {

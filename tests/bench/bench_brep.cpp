@@ -38,6 +38,7 @@
 #include "steady/brep/brep_io.hpp"
 #include "steady/lattice/flat_lattice.hpp"
 #include "steady/brep/trim.hpp"
+#include "brick_definition.hpp"
 
 using namespace steady;
 
@@ -59,7 +60,7 @@ long peak_rss_mb() {
 }
 
 Lattice grid(Counts c, const Similarity& U = Similarity::translation({1, 0, 0})) {
-  LatticeDefinition d;
+  test::BrickDefinition d;
   d.nodes = {{{0, 0, 0}, kNodeRadius}};
   for (int k = 0; k < 3; ++k) d.beams.push_back({0, k == 0, k == 1, k == 2, 0, kRadii[k][0], kRadii[k][1]});
   d.counts = c;

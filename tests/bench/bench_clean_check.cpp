@@ -9,6 +9,7 @@
 
 #include "steady/query/clean_check.hpp"
 #include "steady/lattice/flat_lattice.hpp"
+#include "brick_definition.hpp"
 
 using namespace steady;
 
@@ -16,7 +17,7 @@ namespace {
 
 // A gently swirled cubic strut lattice with n^3 groups (about 3 n^3 beams), clean.
 Lattice cubic(std::int64_t n) {
-  LatticeDefinition d;
+  test::BrickDefinition d;
   d.nodes = {{{0, 0, 0}, 0.25}};
   d.beams = {{0, 1, 0, 0, 0, 0.1, 0.1}, {0, 0, 1, 0, 0, 0.1, 0.12}, {0, 0, 0, 1, 0, 0.12, 0.1}};
   d.counts = {n, n, n};

@@ -6,13 +6,14 @@
 
 #include "bench_common.hpp"
 #include "steady/lattice/lattice.hpp"
+#include "brick_definition.hpp"
 
 using namespace steady;
 
 namespace {
 
 Lattice bent_twisted_tapered(std::int64_t n) {
-  LatticeDefinition d;
+  test::BrickDefinition d;
   d.nodes = {{{0, 0, 0}, 0.2}};
   d.beams = {{0, 1, 0, 0, 0}, {0, 0, 1, 0, 0}, {0, 0, 0, 1, 0}};
   d.counts = {n, n, n};
@@ -25,14 +26,16 @@ Lattice bent_twisted_tapered(std::int64_t n) {
 // The naive twin: every ball by iterated application, O(i + j + k) per ball.
 double naive_checksum(const Lattice& lat) {
   const auto& d = lat.definition();
+  const Counts& c = lat.counts();
+  const SteadyBrick& brick = *lat.layout().steady_brick();
   double sum = 0.0;
-  for (std::int64_t k = 0; k < d.counts.w; ++k)
-    for (std::int64_t j = 0; j < d.counts.v; ++j)
-      for (std::int64_t i = 0; i < d.counts.u; ++i) {
+  for (std::int64_t k = 0; k < c.w; ++k)
+    for (std::int64_t j = 0; j < c.v; ++j)
+      for (std::int64_t i = 0; i < c.u; ++i) {
         Vec3 p = d.nodes[0].center;
-        for (std::int64_t r = 0; r < i; ++r) p = d.u.similarity.apply_point(p);
-        for (std::int64_t r = 0; r < j; ++r) p = d.v.similarity.apply_point(p);
-        for (std::int64_t r = 0; r < k; ++r) p = d.w.similarity.apply_point(p);
+        for (std::int64_t r = 0; r < i; ++r) p = brick.step_along(0).apply_point(p);
+        for (std::int64_t r = 0; r < j; ++r) p = brick.step_along(1).apply_point(p);
+        for (std::int64_t r = 0; r < k; ++r) p = brick.step_along(2).apply_point(p);
         sum += p.x + p.y + p.z;
       }
   return sum;

@@ -12,6 +12,7 @@
 #include "steady/query/hub_overlaps.hpp"
 #include "steady/properties/lattice_properties.hpp"
 #include "steady/properties/radius_scaling.hpp"
+#include "brick_definition.hpp"
 
 using namespace steady;
 
@@ -21,7 +22,7 @@ enum class Kind { Regular, Cylindrical, BentGraded };
 const char* name(Kind k) { return k == Kind::Regular ? "regular" : k == Kind::Cylindrical ? "cylindrical" : "bent-graded"; }
 
 Lattice octet(std::int64_t n, Kind kind, double beam_radius = 0.04, bool hull = false) {
-  LatticeDefinition d;
+  test::BrickDefinition d;
   const Vec3 p[4] = {{0, 0, 0}, {0.5, 0.5, 0}, {0.5, 0, 0.5}, {0, 0.5, 0.5}};
   for (const Vec3& q : p) d.nodes.push_back({q, 0.1});
   // Every pair of nodes sqrt(2)/2 apart (the FCC nearest neighbours), once.

@@ -5,6 +5,7 @@
 
 #include "steady/lattice/lattice.hpp"
 #include "test_support.hpp"
+#include "brick_definition.hpp"
 
 namespace steady::test {
 
@@ -31,7 +32,7 @@ struct LatticeOptions {
 inline Lattice random_lattice(std::mt19937_64& rng, const LatticeOptions& o, Counts counts) {
   std::uniform_real_distribution<double> u01(0.0, 1.0);
   std::uniform_int_distribution<int> offset(-o.max_offset, o.max_offset);
-  LatticeDefinition d;
+  test::BrickDefinition d;
   for (int n = 0; n < o.nodes; ++n)
     d.nodes.push_back({n == 0 ? Vec3(0.0) : Vec3(0.5, 0.5, 0.5) + 0.15 * random_vec(rng), 0.12 + 0.06 * u01(rng)});
   while (static_cast<int>(d.beams.size()) < o.patterns) {

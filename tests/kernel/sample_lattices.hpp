@@ -7,6 +7,7 @@
 
 #include "steady/lattice/lattice.hpp"
 #include "test_support.hpp"
+#include "brick_definition.hpp"
 
 namespace steady::test {
 
@@ -118,7 +119,7 @@ inline Lattice random_lattice(std::mt19937_64& rng, int index, RandomLatticeOpti
   const Counts counts{count(), count(), count()};
   const Similarity U = step({1.2, 0, 0}, index), V = step({0, 1.2, 0}, index / 7), W = step({0, 0, 1.2}, index / 49);
   const Similarity G = random_similarity(rng, index);
-  LatticeDefinition d;
+  test::BrickDefinition d;
   d.nodes = tn;
   d.beams = pats;
   d.counts = counts;

@@ -15,6 +15,7 @@
 #include "steady/lattice/flat_lattice.hpp"
 #include "test_lattices.hpp"
 #include "test_support.hpp"
+#include "brick_definition.hpp"
 
 namespace steady {
 namespace {
@@ -133,7 +134,7 @@ TEST(CleanCheck, StrutLatticesWithThinBeamsAreClean) {
 Lattice messy_lattice(std::mt19937_64& rng, double node_radius) {
   std::uniform_real_distribution<double> u01(0.0, 1.0);
   std::uniform_int_distribution<int> offset(-1, 1);
-  LatticeDefinition d;
+  test::BrickDefinition d;
   d.nodes = {{{0, 0, 0}, node_radius}, {{0.4, 0.5, 0.45}, node_radius * (0.5 + u01(rng))}};
   std::set<std::tuple<int, int, int, int, int>> used;
   while (d.beams.size() < 6) {
@@ -233,7 +234,7 @@ TEST(CleanCheck, ReportsKnownOffenders) {
 TEST(CleanCheck, HullModelHubsAreNotClean) {
   // Without explicit radii the beams are tangent to their nodes: on every ball with two beams the tangent
   // circles are near-great circles that cross.
-  LatticeDefinition d;
+  test::BrickDefinition d;
   d.nodes = {{{0, 0, 0}, 0.2}};
   d.beams = {{0, 1, 0, 0, 0}, {0, 0, 1, 0, 0}};
   d.counts = {3, 3, 1};

@@ -13,6 +13,7 @@
 #include <random>
 #include <sstream>
 
+#include "query_oracle.hpp"
 #include "sample_lattices.hpp"
 #include "steady/brep/body_filter.hpp"
 #include "steady/core/errors.hpp"
@@ -63,25 +64,9 @@ TEST(Filters, IndexStencil) {
 }
 
 // Brute-force interference of a ball with every kept element of a (filtered) lattice.
-struct KeptElements {
-  std::vector<Ball> balls;
-  std::vector<BeamGeometry> beams;
-  explicit KeptElements(const FilteredLattice& f) {
-    const auto bm = balls_of(f), em = beams_of(f);
-    f.lattice().for_each_ball([&](std::int64_t x, const NodeId&, const Ball& e) {
-      if (bm[x]) balls.push_back(e);
-    });
-    f.lattice().for_each_beam([&](std::int64_t x, const BeamId&, const BeamGeometry& g) {
-      if (em[x]) beams.push_back(g);
-    });
-  }
-  bool meets(const Ball& b) const {
-    for (const Ball& e : balls)
-      if (ball_meets_ball(b, e)) return true;
-    for (const BeamGeometry& g : beams)
-      if (ball_meets_beam(b, g)) return true;
-    return false;
-  }
+struct KeptElements : test::BruteForceQuery {
+  explicit KeptElements(const FilteredLattice& f)
+      : test::BruteForceQuery(f.lattice(), balls_of(f).data(), beams_of(f).data()) {}
 };
 
 TEST(Filters, LatticeInLatticeAndCascade) {

@@ -6,6 +6,7 @@
 
 #include "steady/lattice/hub.hpp"
 #include "test_support.hpp"
+#include "brick_definition.hpp"
 
 namespace steady {
 namespace {
@@ -59,7 +60,7 @@ TEST(Hub, ExitCirclesLieOnSphereAndCone) {
 }
 
 TEST(Hub, IncidenceMatchesBruteForce) {
-  LatticeDefinition d;
+  test::BrickDefinition d;
   d.nodes = {{{0, 0, 0}, 0.2}, {{0.5, 0.5, 0.5}, 0.15}};
   d.beams = {{0, 1, 0, 0, 0}, {0, 0, 1, 0, 0}, {0, 0, 0, 1, 0}, {0, 0, 0, 0, 1, 0.1, 0.1}, {1, 1, 1, 1, 0}};
   d.counts = {4, 3, 3};

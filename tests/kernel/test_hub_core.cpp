@@ -25,6 +25,7 @@
 #include "brep/hub_core.hpp"
 #include "steady/brep/trim.hpp"
 #include "test_support.hpp"
+#include "brick_definition.hpp"
 
 namespace steady {
 namespace {
@@ -150,7 +151,7 @@ TEST(HubCore, TransversalHubs) {
 // frustums between the collars.
 TEST(HubCore, HullModelLatticeTrimsAndSkins) {
   // Cores near the body's boundary go through the trimming Booleans like any hub.
-  LatticeDefinition d;
+  test::BrickDefinition d;
   d.nodes = {{{0, 0, 0}, 0.22}};
   d.beams = {{0, 1, 0, 0, 0}, {0, 0, 1, 0, 0}, {0, 0, 0, 1, 0}};
   d.counts = {5, 5, 5};
@@ -173,7 +174,7 @@ TEST(HubCore, HullModelLatticeTrimsAndSkins) {
 
 TEST(HubCore, HullModelLatticeIsOneValidSolid) {
   for (int graded = 0; graded < 2; ++graded) {
-    LatticeDefinition d;
+    test::BrickDefinition d;
     d.nodes = {{{0, 0, 0}, 0.25}};
     d.beams = {{0, 1, 0, 0, 0}, {0, 0, 1, 0, 0}, {0, 0, 0, 1, 0}};
     d.counts = {3, 3, 3};

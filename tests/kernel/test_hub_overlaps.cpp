@@ -10,12 +10,13 @@
 #include "steady/core/errors.hpp"
 #include "steady/lattice/hub.hpp"
 #include "steady/properties/lattice_properties.hpp"
+#include "brick_definition.hpp"
 
 namespace steady {
 namespace {
 
 Lattice bent_bcc(double bend, double scale, Counts counts) {
-  LatticeDefinition d;
+  test::BrickDefinition d;
   d.nodes = {{Vec3(0.0), 0.2}, {Vec3(0.5, 0.5, 0.5), 0.18}};
   d.beams = {{0, 1, 0, 0, 0, 0.1, 0.1}, {0, 0, 1, 0, 0, 0.1, 0.1}, {0, 0, 0, 1, 0, 0.1, 0.1},
              {0, 0, 0, 0, 1, 0.12, 0.1}, {1, 1, 1, 1, 0, 0.1, 0.12}, {1, 1, 0, 0, 0, 0.09, 0.11}};
@@ -114,7 +115,7 @@ TEST(HubOverlaps, SlabWindowCountsLikeTheAllHubsCheck) {
 TEST(HubOverlaps, TouchingIsNotOverlapping) {
   // Balls of radius exactly half the beam length touch at the mid-plane: clean. A hair more: not clean.
   for (double radius : {0.5, 0.5 * (1 + 1e-6)}) {
-    LatticeDefinition d;
+    test::BrickDefinition d;
     d.nodes = {{Vec3(0.0), radius}};
     d.beams = {{0, 1, 0, 0, 0}};
     d.counts = {3, 1, 1};

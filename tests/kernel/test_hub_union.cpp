@@ -13,6 +13,7 @@
 #include "steady/properties/hub_union.hpp"
 #include "properties/hub_solid.hpp"
 #include "steady/properties/lattice_properties.hpp"
+#include "brick_definition.hpp"
 
 namespace steady {
 namespace {
@@ -54,7 +55,7 @@ void expect_matches_occ(const Lattice& lat, const std::string& what) {
 }
 
 TEST(HubUnion, OverlappingBallsMatchBRepGProp) {
-  LatticeDefinition d;
+  test::BrickDefinition d;
   d.nodes = {{Vec3(0.0), 0.4}, {Vec3(0.5, 0.5, 0.0), 0.4}};
   d.beams = {{0, 1, 0, 0, 0, 0.1, 0.1}, {1, 1, 0, 0, 1, 0.1, 0.1}};
   d.counts = {3, 2, 1};
@@ -68,7 +69,7 @@ TEST(HubUnion, CrossingDiagonalsInABentLatticeMatchBRepGProp) {
   // Both diagonals of every xy face: beams of different hubs cross at the face centres; bent along i. (Radii
   // differ where the diagonals cross: two equal cones crossing meet in a singular curve, where OpenCASCADE's
   // Fuse fails; the union then reports an error, tested below.)
-  LatticeDefinition d;
+  test::BrickDefinition d;
   d.nodes = {{Vec3(0.0), 0.2}};
   d.beams = {{0, 1, 0, 0, 0, 0.08, 0.08}, {0, 0, 1, 0, 0, 0.08, 0.08}, {0, 1, 1, 0, 0, 0.07, 0.06},
              {0, -1, 1, 0, 0, 0.05, 0.045}, {0, 0, 0, 1, 0, 0.08, 0.08}};
@@ -87,7 +88,7 @@ TEST(HubUnion, RandomNonCleanLatticesMatchBRepGProp) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   int compared = 0;
   for (int trial = 0; trial < 4; ++trial) {
-    LatticeDefinition d;
+    test::BrickDefinition d;
     const double r0 = 0.2 + 0.1 * unit(rng), r1 = 0.15 + 0.1 * unit(rng);
     d.nodes = {{Vec3(0.0), r0}, {Vec3(0.3 + 0.2 * unit(rng), 0.3 + 0.2 * unit(rng), 0.1 * unit(rng)), r1}};
     const double b = 0.05 + 0.03 * unit(rng);
@@ -114,7 +115,7 @@ TEST(HubUnion, RandomNonCleanLatticesMatchBRepGProp) {
 TEST(HubUnion, EqualCrossingBeamsGiveTheRightAnswerOrAnError) {
   // Equal diagonals crossing: OpenCASCADE's Fuse is at its weakest. Never a wrong number: either the union
   // matches the whole lattice's fuse, or a runtime_error names the cluster.
-  LatticeDefinition d;
+  test::BrickDefinition d;
   d.nodes = {{Vec3(0.0), 0.2}};
   d.beams = {{0, 1, 0, 0, 0, 0.08, 0.08}, {0, 0, 1, 0, 0, 0.08, 0.08}, {0, 1, 1, 0, 0, 0.07, 0.06},
              {0, -1, 1, 0, 0, 0.06, 0.07}};
@@ -160,7 +161,7 @@ TEST(HubUnion, EqualCrossingBeamsGiveTheRightAnswerOrAnError) {
 }
 
 TEST(HubUnion, RefusedWithoutTheUnion) {
-  LatticeDefinition d;
+  test::BrickDefinition d;
   d.nodes = {{Vec3(0.0), 0.4}, {Vec3(0.5, 0.5, 0.0), 0.4}};
   d.beams = {{0, 1, 0, 0, 0, 0.1, 0.1}};
   d.counts = {2, 1, 1};
@@ -178,7 +179,7 @@ TEST(HubUnion, RefusedWithoutTheUnion) {
 }
 
 TEST(HubUnion, HubSolidMatchesHubProperties) {
-  LatticeDefinition d;
+  test::BrickDefinition d;
   d.nodes = {{Vec3(0.0), 0.25}, {Vec3(0.5, 0.5, 0.5), 0.2}};
   d.beams = {{0, 1, 0, 0, 0, 0.1, 0.08}, {0, 0, 1, 0, 0, 0.1, 0.1}, {0, 1, 0, 0, 1, 0.1, 0.09}};
   d.counts = {2, 2, 2};

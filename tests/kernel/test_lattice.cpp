@@ -11,6 +11,7 @@
 #include "steady/core/errors.hpp"
 #include "steady/lattice/lattice.hpp"
 #include "test_support.hpp"
+#include "brick_definition.hpp"
 
 namespace steady {
 namespace {
@@ -21,7 +22,7 @@ constexpr double kPi = 3.14159265358979323846;
 
 // A bent, twisted and tapered lattice with two nodes per group and beams in every direction.
 Lattice graded_lattice(Counts counts, std::vector<NodeId> omitted = {}) {
-  LatticeDefinition d;
+  test::BrickDefinition d;
   d.nodes = {{{0, 0, 0}, 0.2}, {{0.5, 0.5, 0.5}, 0.15}};
   d.beams = {{0, 1, 0, 0, 0}, {0, 0, 1, 0, 0}, {0, 0, 0, 1, 0}, {0, 0, 0, 0, 1},
              {1, 1, 1, 1, 0, 0.05, 0.04}, {1, 2, 1, 0, 0}, {1, 0, 1, -1, 0}, {0, -2, 0, 1, 1, 0.1, 0.1}};
@@ -36,30 +37,35 @@ Lattice graded_lattice(Counts counts, std::vector<NodeId> omitted = {}) {
 
 double dist(const Vec3& a, const Vec3& b) { return glm::length(a - b); }
 
+// The steady-brick view of a lattice: its steps by lattice axis and its placement.
+const SteadyBrick& brick(const Lattice& lat) { return *lat.layout().steady_brick(); }
+
 // Eq. 7: N[i,j,k,n] = Ball(W^k V^j U^i C_n, m_w^k m_v^j m_u^i r_n), checked against iterating U, V, W.
 TEST(Lattice, DirectEvaluationMatchesIteration) {
   const Lattice lat = graded_lattice({7, 5, 4});
   const LatticeDefinition& d = lat.definition();
+  const SteadyBrick& b = brick(lat);
   for (int n = 0; n < 2; ++n)
     for (std::int64_t k = 0; k < 4; ++k)
       for (std::int64_t j = 0; j < 5; ++j)
         for (std::int64_t i = 0; i < 7; ++i) {
           Vec3 p = d.nodes[n].center;
-          for (int r = 0; r < i; ++r) p = d.u.similarity.apply_point(p);
-          for (int r = 0; r < j; ++r) p = d.v.similarity.apply_point(p);
-          for (int r = 0; r < k; ++r) p = d.w.similarity.apply_point(p);
-          p = d.placement.apply_point(p);
+          for (int r = 0; r < i; ++r) p = b.step_along(0).apply_point(p);
+          for (int r = 0; r < j; ++r) p = b.step_along(1).apply_point(p);
+          for (int r = 0; r < k; ++r) p = b.step_along(2).apply_point(p);
+          p = b.placement.apply_point(p);
           const double radius = d.nodes[n].radius * std::pow(1.01, i) * std::pow(0.99, k) * 2.0;
-          const Ball b = lat.ball({i, j, k, n});
-          EXPECT_LT(dist(b.center, p), 1e-12 * (1 + glm::length(p)));
-          EXPECT_NEAR(b.radius, radius, 1e-14);
+          const Ball ball = lat.ball({i, j, k, n});
+          EXPECT_LT(dist(ball.center, p), 1e-12 * (1 + glm::length(p)));
+          EXPECT_NEAR(ball.radius, radius, 1e-14);
         }
 }
 
 // steady-lattices.md section 2: i-rows, j-rows and k-rows of clusters and k-rows of beams are steady.
 TEST(Lattice, SteadinessIdentities) {
   const Lattice lat = graded_lattice({6, 5, 4});
-  const Similarity U = lat.step_u(), V = lat.step_v(), W = lat.step_w(), G = lat.placement();
+  const Similarity U = brick(lat).step_along(0), V = brick(lat).step_along(1), W = brick(lat).step_along(2),
+                   G = brick(lat).placement;
   const Similarity Ginv = G.inverse();
   for (std::int64_t k = 0; k < 4; ++k)
     for (std::int64_t j = 0; j < 5; ++j)
@@ -94,7 +100,7 @@ TEST(Lattice, SteadinessIdentities) {
 
 // steady-lattices.md 11.4: the Fig. 2 lattice has 140 nodes, and rack 3 = (1, 2, 1, 0, 0) has 48 beams.
 TEST(Lattice, Figure2Counts) {
-  LatticeDefinition d;
+  test::BrickDefinition d;
   d.nodes = {{{0, 0, 0}, 0.1}, {{0.4, 0.6, 0}, 0.08}};
   d.beams = {{1, 0, 0, 0, 0}, {0, 1, 0, 0, 0}, {0, 0, 1, 0, 0}, {1, 2, 1, 0, 0}, {1, 1, 0, 0, 1}};
   d.counts = {10, 7, 1};
@@ -226,12 +232,12 @@ TEST(Lattice, InterpolatingControlsHitTheEndFrames) {
   // a single group in a direction: no increment
   const Lattice one = Lattice::interpolating(nodes, beams, {1, 1, 1}, Similarity::translation({5, 0, 0}),
                                              Similarity::identity(), Similarity::identity());
-  EXPECT_LT(one.step_u().map_distance(Similarity::identity()), 1e-15);
+  EXPECT_LT(brick(one).step_along(0).map_distance(Similarity::identity()), 1e-15);
   // a row winding more than a full turn keeps its turns: 9 groups over 3 pi, each a 3 pi / 8 step
   const Lattice spring = Lattice::interpolating(nodes, beams, {9, 1, 1},
                                                 Similarity::screw(3 * kPi, {0, 0, 1}, {-1, 0, 0}, 8.0),
                                                 Similarity::identity(), Similarity::identity());
-  EXPECT_NEAR(spring.step_u().canonical().angle, 3 * kPi / 8, 1e-14);
+  EXPECT_NEAR(brick(spring).step_along(0).canonical().angle, 3 * kPi / 8, 1e-14);
   EXPECT_LT(dist(spring.ball({8, 0, 0, 0}).center, {-2, 0, 8}), 1e-13);
 }
 
@@ -269,7 +275,7 @@ TEST(Lattice, BadInputNamesTheField) {
               Lattice::incremental(nodes, {}, {1000, 1, 1}, Similarity::dilation(10.0, {0, 0, 0}), T, T);
             }).find("U, V, W"),
             std::string::npos);
-  LatticeDefinition d;
+  test::BrickDefinition d;
   d.nodes = nodes;
   d.counts = {2, 2, 2};
   d.omitted = {{2, 0, 0, 0}};

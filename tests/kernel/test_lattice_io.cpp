@@ -6,12 +6,13 @@
 
 #include "steady/core/errors.hpp"
 #include "steady/lattice/lattice_io.hpp"
+#include "brick_definition.hpp"
 
 namespace steady {
 namespace {
 
 Lattice sample() {
-  LatticeDefinition d;
+  test::BrickDefinition d;
   d.nodes = {{{0.1, 0.2, 0.30000000000000004}, 0.2}, {{0.5, 0.5, 0.5}, 1.0 / 3.0}};
   d.beams = {{0, 1, 0, 0, 0}, {0, 0, 0, 0, 1, 0.05, 0.07}, {1, 1, 1, 1, 0}};
   d.counts = {5, 4, 3};
@@ -41,12 +42,12 @@ TEST(LatticeFile, RoundTripIsExact) {
     EXPECT_TRUE(same_bits(da.nodes[n].center, db.nodes[n].center));
     EXPECT_TRUE(same_bits(da.nodes[n].radius, db.nodes[n].radius));
   }
-  EXPECT_TRUE(same_bits(da.u.similarity, db.u.similarity));
-  EXPECT_TRUE(same_bits(da.v.similarity, db.v.similarity));
-  EXPECT_TRUE(same_bits(da.w.similarity, db.w.similarity));
-  EXPECT_TRUE(same_bits(da.placement, db.placement));
-  EXPECT_EQ(db.u.control, StepControl::Cumulative);
-  EXPECT_EQ(db.w.control, StepControl::Incremental);
+  const auto& la = dynamic_cast<const SteadyBrickLayout&>(a.layout());
+  const auto& lb = dynamic_cast<const SteadyBrickLayout&>(b.layout());
+  for (int axis = 0; axis < 3; ++axis) EXPECT_TRUE(same_bits(la.control(axis).similarity, lb.control(axis).similarity));
+  EXPECT_TRUE(same_bits(la.placement(), lb.placement()));
+  EXPECT_EQ(lb.control(0).control, StepControl::Cumulative);
+  EXPECT_EQ(lb.control(2).control, StepControl::Incremental);
   ASSERT_EQ(db.beams.size(), 3u);
   EXPECT_TRUE(same_bits(*db.beams[1].from_radius, 0.05));
   EXPECT_FALSE(db.beams[0].has_radii());
@@ -72,10 +73,11 @@ TEST(LatticeFile, HandWrittenSimilarityForms) {
     "W": {"type": "translation", "vector": [0, 0, 1], "control": "cumulative"},
     "placement": {"type": "rotation", "angle": 1.0, "axis": [1, 0, 0]}
   })";
-  const Lattice lat = lattice_from_json(text);
-  EXPECT_EQ(lat.step_u().kind(), SimilarityKind::Swirl);
-  EXPECT_EQ(lat.step_v().kind(), SimilarityKind::Rotation);
-  EXPECT_NEAR(lat.step_w().translation_part().z, 1.0, 1e-15);  // w = 2: one step carries the whole translation
+  const Lattice lat = lattice_from_json(text);  // version 1: the steady brick's fields at the top level
+  const SteadyBrick& brick = *lat.layout().steady_brick();
+  EXPECT_EQ(brick.step_along(0).kind(), SimilarityKind::Swirl);
+  EXPECT_EQ(brick.step_along(1).kind(), SimilarityKind::Rotation);
+  EXPECT_NEAR(brick.step_along(2).translation_part().z, 1.0, 1e-15);  // w = 2: one step carries the whole translation
   EXPECT_EQ(lat.beam_count(), 3 * 3 * 2);
 }
 
@@ -99,7 +101,10 @@ std::string edited(const std::string& from, const std::string& to) {
 TEST(LatticeFile, MalformedFilesAreRefusedNamingTheField) {
   EXPECT_NE(refusal("{not json").find("not valid JSON"), std::string::npos);
   EXPECT_NE(refusal("[1,2]").find("top level"), std::string::npos);
-  EXPECT_NE(refusal(edited("\"version\":1", "\"version\":2")).find("version: unsupported version 2"), std::string::npos);
+  EXPECT_NE(refusal(edited("\"version\":2", "\"version\":3")).find("version: unsupported version 3"), std::string::npos);
+  EXPECT_NE(refusal(edited("\"kind\":\"steady-brick\"", "\"kind\":\"spiral\"")).find("layout.kind: unknown layout kind"),
+            std::string::npos);
+  EXPECT_NE(refusal(edited("\"layout\"", "\"layuot\"")).find("layuot: unknown field"), std::string::npos);
   EXPECT_NE(refusal(edited("\"format\":\"steady-lattice\"", "\"format\":\"mesh\"")).find("format"), std::string::npos);
   EXPECT_NE(refusal(edited("\"radius\":0.2", "\"radius\":-0.2")).find("nodes[0].radius: must be > 0"), std::string::npos);
   EXPECT_NE(refusal(edited("\"radius\":0.2", "\"radius\":null")).find("nodes[0].radius: expected a number"),
@@ -114,7 +119,7 @@ TEST(LatticeFile, MalformedFilesAreRefusedNamingTheField) {
   EXPECT_NE(refusal(edited("\"counts\":[5,4,3],", "")).find("counts: missing field"), std::string::npos);
   EXPECT_NE(refusal(edited("\"type\":\"generator\"", "\"type\":\"shear\"")).find("unknown similarity type 'shear'"),
             std::string::npos);
-  EXPECT_NE(refusal(edited("\"control\":\"cumulative\"", "\"control\":\"sometimes\"")).find("U.control"),
+  EXPECT_NE(refusal(edited("\"control\":\"cumulative\"", "\"control\":\"sometimes\"")).find("layout.U.control"),
             std::string::npos);
   EXPECT_NE(refusal(edited("\"nodes\"", "\"nodez\"")).find("nodez: unknown field"), std::string::npos);
   EXPECT_NE(refusal(edited("\"omitted\":[[1,2,0,1]", "\"omitted\":[[1,2,9,1]")).find("omitted[0]"), std::string::npos);

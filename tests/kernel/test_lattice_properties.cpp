@@ -13,6 +13,7 @@
 #include "steady/properties/similar_copies.hpp"
 #include "steady/properties/lattice_properties.hpp"
 #include "steady/properties/similar_copies.hpp"
+#include "brick_definition.hpp"
 
 namespace steady {
 namespace {
@@ -110,7 +111,7 @@ TEST(LatticeProperties, TranslationalLatticesNeedOnlyBorderShapes) {
 TEST(LatticeProperties, CylindricalBendsAreSteadyAlongTheAxis) {
   // W turns the slabs about an axis along V's translation: V and W commute (their generators' Lie bracket
   // is exactly zero), so every beam row is a similar copy along j: O(u) shapes, and the same properties.
-  LatticeDefinition d;
+  test::BrickDefinition d;
   d.nodes = {{Vec3(0.0), 0.15}, {Vec3(0.5, 0.5, 0.5), 0.12}};
   d.beams = {{0, 1, 0, 0, 0, 0.06, 0.06}, {0, 0, 1, 0, 0, 0.06, 0.06}, {0, 0, 0, 1, 0, 0.06, 0.06},
              {0, 0, 0, 0, 1, 0.06, 0.05}, {1, 1, 1, 1, 0, 0.05, 0.06}};
@@ -119,9 +120,9 @@ TEST(LatticeProperties, CylindricalBendsAreSteadyAlongTheAxis) {
   d.v = {Similarity::translation({0, 1, 0})};
   d.w = {Similarity::rotation(-0.05, {0, 1, 0}, {-20, 0, 0})};
   const Lattice lat(d);
-  EXPECT_TRUE(exactly_commute(lat.step_v(), lat.step_w()));
-  EXPECT_FALSE(exactly_commute(lat.step_u(), lat.step_w()));
-  EXPECT_FALSE(exactly_commute(Similarity::dilation(1.1, {0, 0, 0}), lat.step_v()));
+  EXPECT_TRUE(exactly_commute(d.v.similarity, d.w.similarity));
+  EXPECT_FALSE(exactly_commute(d.u.similarity, d.w.similarity));
+  EXPECT_FALSE(exactly_commute(Similarity::dilation(1.1, {0, 0, 0}), d.v.similarity));
   const LatticeProperties fast = lattice_properties(lat);
   EXPECT_LE(fast.beam_shapes, 4 * 5 + 2 * 5);  // per pattern at most one row of u shapes (plus omissions: none)
   EXPECT_LT(property_difference(lattice_properties_brute_force(lat), fast), 1e-12);

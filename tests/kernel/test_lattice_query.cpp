@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <random>
 
+#include "query_oracle.hpp"
 #include "sample_lattices.hpp"
 #include "steady/core/errors.hpp"
 #include "steady/query/interference.hpp"
@@ -15,25 +16,6 @@
 
 namespace steady {
 namespace {
-
-// The oracle: every ball and beam the lattice lists (Lattice::for_each_ball/beam, evaluated once),
-// tested with the exact predicates.
-struct BruteForce {
-  std::vector<Ball> balls;
-  std::vector<BeamGeometry> beams;
-  explicit BruteForce(const Lattice& lat) {
-    lat.for_each_ball([&](std::int64_t, const NodeId&, const Ball& b) { balls.push_back(b); });
-    lat.for_each_beam([&](std::int64_t, const BeamId&, const BeamGeometry& g) { beams.push_back(g); });
-  }
-  BallQueryResult operator()(const Ball& q) const {
-    BallQueryResult r;
-    for (std::size_t x = 0; x < balls.size(); ++x)
-      if (ball_meets_ball(q, balls[x])) r.balls.push_back(static_cast<std::int64_t>(x));
-    for (std::size_t x = 0; x < beams.size(); ++x)
-      if (ball_meets_beam(q, beams[x])) r.beams.push_back(static_cast<std::int64_t>(x));
-    return r;
-  }
-};
 
 // Query balls near random elements (so that most queries hit something), some touching exactly, some
 // points, some anywhere in the bound.
@@ -73,7 +55,7 @@ void compare_paths(const Lattice& lat, std::mt19937_64& rng, int queries, Tally&
   ++t.lattices;
   t.slabs += lq.plan().slabs_valid;
   t.constant += lq.plan().constant_valid;
-  const BruteForce brute_force(lat);
+  const test::BruteForceQuery brute_force(lat);
   for (const Ball& q : sample_queries(lat, lq, rng, queries)) {
     const BallQueryResult truth = brute_force(q);
     ++t.queries;

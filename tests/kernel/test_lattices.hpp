@@ -5,6 +5,7 @@
 
 #include "steady/lattice/lattice.hpp"
 #include "test_support.hpp"
+#include "brick_definition.hpp"
 
 namespace steady::test {
 
@@ -17,7 +18,7 @@ enum class StepKind { Translation, Swirl, Screw, General };
 inline Lattice strut_lattice(std::mt19937_64& rng, StepKind kind, Counts counts, double node_radius = 0.25) {
   std::uniform_real_distribution<double> u01(0.0, 1.0);
   auto beam_radius = [&] { return node_radius * (0.3 + 0.3 * u01(rng)); };
-  LatticeDefinition d;
+  test::BrickDefinition d;
   d.nodes = {{{0, 0, 0}, node_radius}};
   for (int axis = 0; axis < 3; ++axis) {
     BeamPattern p{0, axis == 0, axis == 1, axis == 2, 0, beam_radius(), beam_radius()};
@@ -60,7 +61,7 @@ inline Lattice strut_lattice(std::mt19937_64& rng, StepKind kind, Counts counts,
 // A body-centred cubic strut lattice: corner node and centre node, eight diagonals; radii as above.
 inline Lattice bcc_lattice(std::mt19937_64& rng, Counts counts, double corner_radius = 0.2, double center_radius = 0.2) {
   std::uniform_real_distribution<double> u01(0.0, 1.0);
-  LatticeDefinition d;
+  test::BrickDefinition d;
   d.nodes = {{{0, 0, 0}, corner_radius}, {{0.5, 0.5, 0.5}, center_radius}};
   const double r = 0.06 + 0.02 * u01(rng);
   for (int di = 0; di <= 1; ++di)

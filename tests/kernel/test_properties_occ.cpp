@@ -9,6 +9,7 @@
 #include "occ_reference.hpp"
 #include "steady/query/hub_overlaps.hpp"
 #include "steady/properties/lattice_properties.hpp"
+#include "brick_definition.hpp"
 
 namespace steady {
 namespace {
@@ -53,7 +54,7 @@ TEST(PropertiesOcc, SmallLatticesMatchBRepGProp) {
   };
   int compared = 0;
   for (const Case& cs : {Case{{2, 2, 2}, false}, Case{{3, 2, 2}, true}}) {
-    LatticeDefinition d;
+    test::BrickDefinition d;
     d.nodes = {{Vec3(0.0), 0.2}, {Vec3(0.5, 0.5, 0.5), 0.18}};
     d.beams = {{0, 1, 0, 0, 0, 0.1, 0.1}, {0, 0, 1, 0, 0, 0.1, 0.1}, {0, 0, 0, 1, 0, 0.1, 0.1},
                {0, 0, 0, 0, 1, 0.12, 0.1}, {1, 1, 1, 1, 0, 0.1, 0.12}, {1, 1, 0, 0, 0, 0.09, 0.11}};

@@ -8,6 +8,7 @@
 #include "steady/core/errors.hpp"
 #include "steady/properties/lattice_properties.hpp"
 #include "steady/properties/radius_scaling.hpp"
+#include "brick_definition.hpp"
 
 namespace steady {
 namespace {
@@ -47,7 +48,7 @@ TEST(RadiusScaling, VolumeModelMatchesPropertiesOfTheScaledLattice) {
 }
 
 Lattice graded_bcc(std::int64_t n) {
-  LatticeDefinition d;
+  test::BrickDefinition d;
   d.nodes = {{Vec3(0.0), 0.2}, {Vec3(0.5, 0.5, 0.5), 0.18}};
   d.beams = {{0, 1, 0, 0, 0, 0.06, 0.06}, {0, 0, 1, 0, 0, 0.06, 0.06}, {0, 0, 0, 1, 0, 0.06, 0.06},
              {0, 0, 0, 0, 1, 0.07, 0.06}, {1, 1, 0, 0, 0, 0.06, 0.07}, {1, 1, 1, 1, 0, 0.06, 0.07}};
@@ -73,7 +74,7 @@ TEST(RadiusScaling, ReachesTheTargetVolume) {
 
 TEST(RadiusScaling, ReachesTheTargetWhereStumpsOverlap) {
   // Hull model: every hub's caps overlap, so the search must include the quadrature corrections.
-  LatticeDefinition d;
+  test::BrickDefinition d;
   d.nodes = {{Vec3(0.0), 0.2}};
   d.beams = {{0, 1, 0, 0, 0}, {0, 0, 1, 0, 0}, {0, 0, 0, 1, 0}};
   d.counts = {3, 3, 2};
@@ -97,7 +98,7 @@ TEST(RadiusScaling, DensityAndMassTargets) {
 }
 
 TEST(RadiusScaling, EnvelopeOfATranslationalLatticeIsItsCells) {
-  LatticeDefinition d;
+  test::BrickDefinition d;
   d.nodes = {{Vec3(0.0), 0.1}};
   d.beams = {{0, 1, 0, 0, 0}};
   d.counts = {4, 5, 6};

@@ -31,6 +31,7 @@
 #include "steady/brep/trim.hpp"
 #include "occ_reference.hpp"
 #include "test_lattices.hpp"
+#include "brick_definition.hpp"
 
 namespace steady {
 namespace {
@@ -343,7 +344,7 @@ TEST(Trim, TiltedCylinderThroughTheRetriesAgreesWithMonteCarlo) {
   // first Common of some boundary cluster was wrong (measured: a sphere face with a self-intersecting wire), so
   // the retries (other layout of the spheres, turned frame, fuzzy Common) are what makes it trim. Whatever path it takes, the
   // part must be valid and its volume that of the lattice inside the cylinder.
-  LatticeDefinition d;
+  test::BrickDefinition d;
   d.nodes = {{{0, 0, 0}, 0.25}};
   const double radii[3][2] = {{0.10, 0.12}, {0.11, 0.09}, {0.08, 0.10}};
   for (int k = 0; k < 3; ++k) d.beams.push_back({0, k == 0, k == 1, k == 2, 0, radii[k][0], radii[k][1]});

@@ -105,7 +105,9 @@ def test_json_round_trip_is_exact():
     (lambda d: d.update(counts=[0, 1, 1]), "counts.u"),
     (lambda d: d.update(version=99), "version"),
     (lambda d: d.pop("counts"), "counts: missing field"),
-    (lambda d: d["U"].update(type="shear"), "U.type"),
+    (lambda d: d["layout"]["U"].update(type="shear"), "layout.U.type"),
+    (lambda d: d["layout"].update(kind="spiral"), "layout.kind"),
+    (lambda d: d["layout"].update(order="VWU"), "layout.order: unknown field"),
 ])
 def test_bad_files_are_refused_naming_the_field(edit, field):
     doc = json.loads(graded().to_json())

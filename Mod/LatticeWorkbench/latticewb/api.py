@@ -144,16 +144,13 @@ def ball_index_of(obj, kernel_lattice, u, v, w, n):
 
 
 def _placed_json(local, placement):
-    """The lattice's file with the object's placement as its G."""
-    import json
+    """The lattice's file, moved by the object's placement."""
     import steadylattice as sl
     rotation = placement.Rotation
     g = sl.Similarity.translation(tuple(placement.Base))
     if rotation.Angle != 0.0:
         g = g * sl.Similarity.rotation(rotation.Angle, tuple(rotation.Axis))
-    doc = json.loads(local.to_json())
-    doc["placement"] = json.loads(g.to_json())
-    return json.dumps(doc)
+    return local.placed(g).to_json()
 
 
 def export_shape(obj):

@@ -3,10 +3,12 @@
 // B-rep parts (OpenCASCADE) are in steady/brep.hpp. Link steady_core + steady_query (+ steady_properties).
 
 #include "steady/core/ball.hpp"
+#include "steady/core/constants.hpp"
 #include "steady/core/errors.hpp"
 #include "steady/core/frame.hpp"
 #include "steady/core/memory_budget.hpp"
 #include "steady/core/progress.hpp"
+#include "steady/core/rotation.hpp"
 #include "steady/core/similarity.hpp"
 #include "steady/core/similarity2d.hpp"
 #include "steady/core/tolerance.hpp"
@@ -17,8 +19,12 @@
 #include "steady/lattice/convex_distance.hpp"
 #include "steady/lattice/flat_lattice.hpp"
 #include "steady/lattice/hub.hpp"
+#include "steady/lattice/any_order_layout.hpp"
 #include "steady/lattice/lattice.hpp"
 #include "steady/lattice/lattice_io.hpp"
+#include "steady/lattice/layout.hpp"
+#include "steady/lattice/steady_brick_layout.hpp"
+#include "steady/lattice/table_layout.hpp"
 
 #include "steady/query/block_bounds.hpp"
 #include "steady/query/clean_check.hpp"

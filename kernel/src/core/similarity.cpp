@@ -7,6 +7,7 @@
 
 #include "core/similarity_generator.hpp"
 #include "steady/core/errors.hpp"
+#include "steady/core/rotation.hpp"
 #include "steady/core/tolerance.hpp"
 
 namespace steady {
@@ -25,23 +26,11 @@ Vec3 unit_axis(const Vec3& axis, const char* field) {
   return axis / len;
 }
 
-// Rodrigues: rotation by |omega| about omega / |omega|.
+// Rotation by |omega| about omega / |omega|.
 Mat3 rotation_from_vector(const Vec3& omega) {
   const double angle = glm::length(omega);
   if (angle == 0.0) return Mat3(1.0);
-  const Vec3 n = omega / angle;
-  const double c = std::cos(angle), s = std::sin(angle), C = 1.0 - c;
-  Mat3 r;  // glm is column-major: r[col][row]
-  r[0][0] = c + n.x * n.x * C;
-  r[1][0] = n.x * n.y * C - n.z * s;
-  r[2][0] = n.x * n.z * C + n.y * s;
-  r[0][1] = n.y * n.x * C + n.z * s;
-  r[1][1] = c + n.y * n.y * C;
-  r[2][1] = n.y * n.z * C - n.x * s;
-  r[0][2] = n.z * n.x * C - n.y * s;
-  r[1][2] = n.z * n.y * C + n.x * s;
-  r[2][2] = c + n.z * n.z * C;
-  return r;
+  return axis_rotation(omega / angle, std::cos(angle), std::sin(angle));
 }
 
 // The principal rotation vector (angle in [0, pi]) of an orthonormal matrix.

@@ -7,14 +7,12 @@
 #include <sstream>
 
 #include "lattice/rank.hpp"
+#include "steady/lattice/any_order_layout.hpp"
 #include "steady/core/errors.hpp"
 
 namespace steady {
 namespace {
 
-// Group scales are exp(i ln s_u + j ln s_v + k ln s_w + ln s_G); beyond this the doubles of a ball's
-// radius over- or underflow (exp(700) ~ 1e304), so such a lattice is refused.
-constexpr double kMaxGroupLogScale = 690.0;
 // Element counts must stay exact in int64 arithmetic with room for products: 2^62.
 constexpr double kMaxElements = 4.6e18;
 
@@ -24,61 +22,62 @@ std::string field(const char* name, std::size_t index) {
   return os.str();
 }
 
-std::int64_t overlap(std::int64_t count, int offset, std::int64_t* lo) {
-  // Start indices x with 0 <= x < count and 0 <= x + offset < count.
-  *lo = std::max<std::int64_t>(0, -offset);
-  const std::int64_t hi = std::min<std::int64_t>(count, count - offset);
-  return std::max<std::int64_t>(0, hi - *lo);
+std::int64_t permuted_index(const AxisOrder& axes, int b, std::int64_t i, std::int64_t j, std::int64_t k) {
+  const std::int64_t index[3] = {i, j, k};
+  return index[axes[static_cast<std::size_t>(b)]];
 }
 
-Similarity step_from(const DirectionControl& c, std::int64_t count) {
-  if (c.control == StepControl::Incremental) return c.similarity;
-  if (count <= 1) return Similarity::identity();  // no increment in a single-group row
-  return c.similarity.power(1.0 / static_cast<double>(count - 1));
+// The template in brick axes: beam offsets and omitted nodes permuted (brick axis b is lattice axis axes[b]).
+LatticeDefinition in_brick_axes(const LatticeDefinition& d, const SteadyBrick& view) {
+  LatticeDefinition b;
+  b.nodes = d.nodes;
+  b.layout = view.layout_in_brick_axes;
+  for (BeamPattern p : d.beams) {
+    const int di = p.di, dj = p.dj, dk = p.dk;
+    p.di = static_cast<int>(permuted_index(view.axes, 0, di, dj, dk));
+    p.dj = static_cast<int>(permuted_index(view.axes, 1, di, dj, dk));
+    p.dk = static_cast<int>(permuted_index(view.axes, 2, di, dj, dk));
+    b.beams.push_back(p);
+  }
+  for (const NodeId& id : d.omitted)
+    b.omitted.push_back({permuted_index(view.axes, 0, id.i, id.j, id.k), permuted_index(view.axes, 1, id.i, id.j, id.k),
+                         permuted_index(view.axes, 2, id.i, id.j, id.k), id.n});
+  return b;
 }
 
 }  // namespace
 
+IndexBlock pattern_start_groups(const Counts& counts, const BeamPattern& b) {
+  // Start indices x with 0 <= x < count and 0 <= x + offset < count, per direction.
+  auto range = [](std::int64_t count, int offset, std::int64_t* lo, std::int64_t* hi) {
+    *lo = std::max<std::int64_t>(0, -offset);
+    *hi = std::max(*lo, std::min<std::int64_t>(count, count - offset));
+  };
+  IndexBlock r;
+  range(counts.u, b.di, &r.i0, &r.i1);
+  range(counts.v, b.dj, &r.j0, &r.j1);
+  range(counts.w, b.dk, &r.k0, &r.k1);
+  return r;
+}
+
 Lattice::Lattice(LatticeDefinition definition) : def_(std::move(definition)) {
   validate();
-  step_u_ = step_from(def_.u, def_.counts.u);
-  step_v_ = step_from(def_.v, def_.counts.v);
-  step_w_ = step_from(def_.w, def_.counts.w);
-  const double max_log_scale = std::abs(def_.placement.log_scale()) +
-                               std::abs(step_u_.log_scale()) * static_cast<double>(def_.counts.u - 1) +
-                               std::abs(step_v_.log_scale()) * static_cast<double>(def_.counts.v - 1) +
-                               std::abs(step_w_.log_scale()) * static_cast<double>(def_.counts.w - 1);
-  if (max_log_scale > kMaxGroupLogScale)
-    fail_input("U, V, W", "the scales compound beyond floating point over the counts (a group's scale reaches exp(" +
-                              std::to_string(max_log_scale) + "))");
   build_indexing();
+  const SteadyBrick* view = def_.layout->steady_brick();
+  if (view && view->reordered()) brick_ = std::make_shared<const Lattice>(in_brick_axes(def_, *view));
 }
 
 Lattice Lattice::incremental(std::vector<TemplateNode> nodes, std::vector<BeamPattern> beams, Counts counts,
                              const Similarity& U, const Similarity& V, const Similarity& W, const Similarity& G) {
-  LatticeDefinition d;
-  d.nodes = std::move(nodes);
-  d.beams = std::move(beams);
-  d.counts = counts;
-  d.u = {U, StepControl::Incremental};
-  d.v = {V, StepControl::Incremental};
-  d.w = {W, StepControl::Incremental};
-  d.placement = G;
-  return Lattice(std::move(d));
+  return Lattice({std::move(nodes), std::move(beams), SteadyBrickLayout::steps(counts, U, V, W, G), {}});
 }
 
 Lattice Lattice::interpolating(std::vector<TemplateNode> nodes, std::vector<BeamPattern> beams, Counts counts,
                                const Similarity& U_total, const Similarity& V_total, const Similarity& W_total,
                                const Similarity& G) {
-  LatticeDefinition d;
-  d.nodes = std::move(nodes);
-  d.beams = std::move(beams);
-  d.counts = counts;
-  d.u = {U_total, StepControl::Cumulative};
-  d.v = {V_total, StepControl::Cumulative};
-  d.w = {W_total, StepControl::Cumulative};
-  d.placement = G;
-  return Lattice(std::move(d));
+  auto layout = SteadyBrickLayout::make(counts, {U_total, StepControl::Cumulative}, {V_total, StepControl::Cumulative},
+                                        {W_total, StepControl::Cumulative}, G);
+  return Lattice({std::move(nodes), std::move(beams), std::move(layout), {}});
 }
 
 Lattice Lattice::from_frames(std::vector<TemplateNode> nodes, std::vector<BeamPattern> beams, Counts counts,
@@ -97,18 +96,31 @@ Lattice Lattice::from_frames(std::vector<TemplateNode> nodes, std::vector<BeamPa
                        local_total(end_w), G);
 }
 
+Lattice Lattice::ordered(std::vector<TemplateNode> nodes, std::vector<BeamPattern> beams, Counts counts,
+                         const DirectionControl& U, const DirectionControl& V, const DirectionControl& W,
+                         const Similarity& G, const AxisOrder& order, std::vector<NodeId> omitted) {
+  LayoutPtr layout = order == kUVW ? LayoutPtr(SteadyBrickLayout::make(counts, U, V, W, G))
+                                   : AnyOrderLayout::make(counts, U, V, W, G, order);
+  return Lattice({std::move(nodes), std::move(beams), std::move(layout), std::move(omitted)});
+}
+
+Lattice Lattice::with_layout(LayoutPtr layout) const {
+  LatticeDefinition d = def_;
+  d.layout = std::move(layout);
+  return Lattice(std::move(d));
+}
+
 void Lattice::validate() const {
   const auto& d = def_;
+  if (!d.layout) fail_input("layout", "the lattice needs a layout");
   if (d.nodes.empty()) fail_input("nodes", "the template needs at least one node");
   for (std::size_t n = 0; n < d.nodes.size(); ++n) {
     const std::string f = field("nodes", n);
     for (int c = 0; c < 3; ++c) require_finite(d.nodes[n].center[c], f + ".center");
     require_positive(d.nodes[n].radius, f + ".radius");
   }
-  const std::int64_t cs[3] = {d.counts.u, d.counts.v, d.counts.w};
-  const char* names[3] = {"counts.u", "counts.v", "counts.w"};
-  for (int a = 0; a < 3; ++a)
-    if (cs[a] < 1) fail_input(names[a], "must be >= 1 (got " + std::to_string(cs[a]) + ")");
+  const Counts& counts = d.layout->counts();  // >= 1 each: the layout checked them
+  const std::int64_t cs[3] = {counts.u, counts.v, counts.w};
   const double total = static_cast<double>(cs[0]) * cs[1] * cs[2] * static_cast<double>(d.nodes.size()) *
                        std::max<double>(1.0, static_cast<double>(d.beams.size()));
   if (total > kMaxElements) fail_input("counts", "the lattice has more elements than 64-bit indices can address");
@@ -156,7 +168,8 @@ void Lattice::validate() const {
 }
 
 std::int64_t Lattice::node_linear(const NodeId& id) const {
-  return ((id.k * def_.counts.v + id.j) * def_.counts.u + id.i) * node_count() + id.n;
+  const Counts& c = counts();
+  return ((id.k * c.v + id.j) * c.u + id.i) * node_count() + id.n;
 }
 
 NodeId Lattice::node_from_linear(std::int64_t linear) const {
@@ -164,10 +177,11 @@ NodeId Lattice::node_from_linear(std::int64_t linear) const {
   const std::int64_t nn = node_count();
   id.n = static_cast<int>(linear % nn);
   std::int64_t g = linear / nn;
-  id.i = g % def_.counts.u;
-  g /= def_.counts.u;
-  id.j = g % def_.counts.v;
-  id.k = g / def_.counts.v;
+  const Counts& c = counts();
+  id.i = g % c.u;
+  g /= c.u;
+  id.j = g % c.v;
+  id.k = g / c.v;
   return id;
 }
 
@@ -176,7 +190,7 @@ void Lattice::build_indexing() {
   for (const NodeId& id : def_.omitted) omitted_linear_.push_back(node_linear(id));
   std::sort(omitted_linear_.begin(), omitted_linear_.end());
   omitted_linear_.erase(std::unique(omitted_linear_.begin(), omitted_linear_.end()), omitted_linear_.end());
-  ball_count_ = def_.counts.u * def_.counts.v * def_.counts.w * node_count() -
+  ball_count_ = counts().groups() * node_count() -
                 static_cast<std::int64_t>(omitted_linear_.size());
 
   const int np = pattern_count();
@@ -186,13 +200,8 @@ void Lattice::build_indexing() {
   for (int p = 0; p < np; ++p) {
     const BeamPattern& b = def_.beams[p];
     PatternRange& r = pattern_ranges_[p];
-    // overlap() sets the start index: call it before reading it (the order inside one expression is unspecified).
-    const std::int64_t ni = overlap(def_.counts.u, b.di, &r.i0);
-    const std::int64_t nj = overlap(def_.counts.v, b.dj, &r.j0);
-    const std::int64_t nk = overlap(def_.counts.w, b.dk, &r.k0);
-    r.i1 = r.i0 + ni;
-    r.j1 = r.j0 + nj;
-    r.k1 = r.k0 + nk;
+    const IndexBlock starts = pattern_start_groups(counts(), b);
+    r = {starts.i0, starts.i1, starts.j0, starts.j1, starts.k0, starts.k1};
     auto in_range = [&r](std::int64_t i, std::int64_t j, std::int64_t k) {
       return i >= r.i0 && i < r.i1 && j >= r.j0 && j < r.j1 && k >= r.k0 && k < r.k1;
     };
@@ -211,21 +220,47 @@ void Lattice::build_indexing() {
 }
 
 bool Lattice::group_exists(std::int64_t i, std::int64_t j, std::int64_t k) const {
-  return i >= 0 && i < def_.counts.u && j >= 0 && j < def_.counts.v && k >= 0 && k < def_.counts.w;
+  return def_.layout->contains(i, j, k);
 }
 
 SimilarityTransform Lattice::group_transform(std::int64_t i, std::int64_t j, std::int64_t k) const {
-  if (!group_exists(i, j, k))
-    fail_input("group", "(" + std::to_string(i) + ", " + std::to_string(j) + ", " + std::to_string(k) +
-                            ") is outside the lattice");
-  return def_.placement.transform() * step_w_.power(static_cast<double>(k)).transform() *
-         step_v_.power(static_cast<double>(j)).transform() * step_u_.power(static_cast<double>(i)).transform();
+  return def_.layout->group_transform(i, j, k);
 }
 
 Similarity Lattice::group_similarity(std::int64_t i, std::int64_t j, std::int64_t k) const {
-  if (!group_exists(i, j, k)) return Similarity::from_transform(group_transform(i, j, k));  // throws
-  return def_.placement * step_w_.power(static_cast<double>(k)) * step_v_.power(static_cast<double>(j)) *
-         step_u_.power(static_cast<double>(i));
+  return def_.layout->group_similarity(i, j, k);
+}
+
+const Lattice* Lattice::brick_lattice() const {
+  const SteadyBrick* view = def_.layout->steady_brick();
+  if (!view) return nullptr;
+  return view->reordered() ? brick_.get() : this;
+}
+
+NodeId Lattice::to_brick(const NodeId& id) const {
+  const SteadyBrick* view = def_.layout->steady_brick();
+  if (!view || !view->reordered()) return id;
+  return {permuted_index(view->axes, 0, id.i, id.j, id.k), permuted_index(view->axes, 1, id.i, id.j, id.k),
+          permuted_index(view->axes, 2, id.i, id.j, id.k), id.n};
+}
+
+NodeId Lattice::from_brick(const NodeId& id) const {
+  const SteadyBrick* view = def_.layout->steady_brick();
+  if (!view || !view->reordered()) return id;
+  std::int64_t index[3];
+  const std::int64_t brick[3] = {id.i, id.j, id.k};
+  for (int b = 0; b < 3; ++b) index[view->axes[b]] = brick[b];
+  return {index[0], index[1], index[2], id.n};
+}
+
+BeamId Lattice::to_brick(const BeamId& id) const {
+  const NodeId n = to_brick(NodeId{id.i, id.j, id.k, 0});
+  return {n.i, n.j, n.k, id.pattern};
+}
+
+BeamId Lattice::from_brick(const BeamId& id) const {
+  const NodeId n = from_brick(NodeId{id.i, id.j, id.k, 0});
+  return {n.i, n.j, n.k, id.pattern};
 }
 
 bool Lattice::node_exists(const NodeId& id) const {
@@ -304,21 +339,18 @@ std::uint64_t Lattice::listing_bytes() const {
 }
 
 void Lattice::balls(double* centers, double* radii) const {
-  const Counts& c = def_.counts;
+  const Counts& c = counts();
   const int nn = node_count();
-  std::vector<SimilarityTransform> u_powers(c.u);
-  for (std::int64_t i = 0; i < c.u; ++i) u_powers[i] = step_u_.power(static_cast<double>(i)).transform();
-  const SimilarityTransform g = def_.placement.transform();
   // One task per (j, k) row of groups; the row's first ball index comes from the rank of its first node.
   tbb::parallel_for(std::int64_t(0), c.v * c.w, [&](std::int64_t row) {
     const std::int64_t j = row % c.v, k = row / c.v;
-    const SimilarityTransform prefix = g * step_w_.power(static_cast<double>(k)).transform() *
-                                       step_v_.power(static_cast<double>(j)).transform();
+    std::vector<SimilarityTransform> groups(static_cast<std::size_t>(c.u));
+    def_.layout->row_transforms(j, k, groups.data());
     std::int64_t linear = node_linear(NodeId{0, j, k, 0});
     auto skip = std::lower_bound(omitted_linear_.begin(), omitted_linear_.end(), linear);
     std::int64_t index = linear - (skip - omitted_linear_.begin());
     for (std::int64_t i = 0; i < c.u; ++i) {
-      const SimilarityTransform s = prefix * u_powers[i];
+      const SimilarityTransform& s = groups[static_cast<std::size_t>(i)];
       for (int n = 0; n < nn; ++n, ++linear) {
         if (skip != omitted_linear_.end() && *skip == linear) {
           ++skip;
@@ -336,20 +368,19 @@ void Lattice::balls(double* centers, double* radii) const {
 }
 
 void Lattice::beams(std::int64_t* start, std::int64_t* end, double* start_radius, double* end_radius) const {
-  const double lu = step_u_.log_scale(), lv = step_v_.log_scale(), lw = step_w_.log_scale();
-  const double lg = def_.placement.log_scale();
-  auto group_scale = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
-    return std::exp(lg + static_cast<double>(i) * lu + static_cast<double>(j) * lv + static_cast<double>(k) * lw);
-  };
+  const Counts& c = counts();
   for (int p = 0; p < pattern_count(); ++p) {
     const BeamPattern& b = def_.beams[p];
     const PatternRange& r = pattern_ranges_[p];
     const auto& killed = killed_beams_[p];
     const std::int64_t nj = r.j1 - r.j0, nk = r.k1 - r.k0;
-    const double r_from = b.has_radii() ? *b.from_radius : def_.nodes[b.from].radius;
-    const double r_to = b.has_radii() ? *b.to_radius : def_.nodes[b.to].radius;
+    const double node_from = def_.nodes[b.from].radius, node_to = def_.nodes[b.to].radius;
     tbb::parallel_for(std::int64_t(0), nj * nk, [&](std::int64_t row) {
       const std::int64_t j = r.j0 + row % nj, k = r.k0 + row / nj;
+      // The group scales of the row and of the row its beams end in (the radii as beam() gives them).
+      std::vector<SimilarityTransform> here(static_cast<std::size_t>(c.u)), there(static_cast<std::size_t>(c.u));
+      def_.layout->row_transforms(j, k, here.data());
+      def_.layout->row_transforms(j + b.dj, k + b.dk, there.data());
       std::int64_t local = r.local(r.i0, j, k);
       auto skip = std::lower_bound(killed.begin(), killed.end(), local);
       std::int64_t index = pattern_offsets_[p] + local - (skip - killed.begin());
@@ -360,8 +391,10 @@ void Lattice::beams(std::int64_t* start, std::int64_t* end, double* start_radius
         }
         start[index] = ball_index(NodeId{i, j, k, b.from});
         end[index] = ball_index(NodeId{i + b.di, j + b.dj, k + b.dk, b.to});
-        start_radius[index] = r_from * group_scale(i, j, k);
-        end_radius[index] = r_to * group_scale(i + b.di, j + b.dj, k + b.dk);
+        const double ball_from = here[static_cast<std::size_t>(i)].scale * node_from;
+        const double ball_to = there[static_cast<std::size_t>(i + b.di)].scale * node_to;
+        start_radius[index] = b.has_radii() ? *b.from_radius * ball_from / node_from : ball_from;
+        end_radius[index] = b.has_radii() ? *b.to_radius * ball_to / node_to : ball_to;
         ++index;
       }
     });

@@ -9,11 +9,11 @@
 #include "properties/gauss_kronrod.hpp"
 #include "properties/small_polynomial.hpp"
 #include "steady/core/errors.hpp"
+#include "steady/core/constants.hpp"
 
 namespace steady {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // Caps closer than this to touching (radians) are treated as disjoint: the volume two caps overlapping by
 // an angle d share outside the ball is O(d^2.5 R^3), below 1e-22 R^3 here.
@@ -35,9 +35,6 @@ constexpr double kNarrowPiece = 1e-7;
 
 // Hidden stretches shorter than this (in the segment's parameter, 0..1) are ignored: see inside_interval.
 constexpr double kNegligibleStretch = 1e-12;
-
-// A node ball may touch its beam's mid-plane (two balls in contact); beyond rounding it may not cross it.
-constexpr double kMidPlaneSlack = 1e-12;
 
 // Three-point Gauss-Legendre on [-1, 1]: exact for polynomials up to degree 5, which covers every
 // integrand of the stump pieces (at most degree 4 in the axial coordinate, degree 3 along a segment).

@@ -26,7 +26,7 @@ using namespace detail;
 // ---- balls ------------------------------------------------------------------------------------------
 
 MassMoments ball_sum(const Context& c) {
-  const Counts& n = c.def.counts;
+  const Counts& n = c.counts;
   MassMoments total;
   for (int node = 0; node < static_cast<int>(c.def.nodes.size()); ++node) {
     const TemplateNode& t = c.def.nodes[node];
@@ -42,13 +42,14 @@ MassMoments ball_sum(const Context& c) {
 
 MassMoments pattern_sum(const Context& c, int p) {
   const BeamPattern& b = c.def.beams[p];
-  const Counts& n = c.def.counts;
-  const IndexRange ri = pattern_range(n.u, b.di), rj = pattern_range(n.v, b.dj), rk = pattern_range(n.w, b.dk);
+  const Counts& n = c.counts;
+  const IndexBlock starts = pattern_start_groups(n, b);
+    const IndexRange ri = range_i(starts), rj = range_j(starts), rk = range_k(starts);
   if (ri.size() == 0 || rj.size() == 0 || rk.size() == 0) return {};
   const SimilarityTransform w_dk = c.w_pow(b.dk);
   MassMoments slab;  // the pattern's beams of the virtual slab k = 0 (neighbours at k = dk)
   if (c.i_steady(b)) {
-    const SimilarityTransform end = w_dk * c.v_pow(b.dj) * c.u_pow(b.di);
+    const SimilarityTransform end = c.group(b.di, b.dj, b.dk);
     const MassMoments one = beam_moments(c, SimilarityTransform{}, end, p);
     slab = sum_of_copies(c.V, c.P, sum_of_copies(c.U, c.P, one, ri.size(), ri.lo), rj.size(), rj.lo);
   } else if (c.j_steady(b)) {
@@ -97,7 +98,7 @@ MassMoments class_sum(const Similarity& step, const Vec3& P, const MassMoments& 
 }
 
 MassMoments hub_corrections(const Context& c) {
-  const Counts& n = c.def.counts;
+  const Counts& n = c.counts;
   MassMoments total;
   for (int node = 0; node < static_cast<int>(c.def.nodes.size()); ++node) {
     const std::vector<Incidence> all = incidences(c, node);
@@ -124,8 +125,7 @@ MassMoments hub_corrections(const Context& c) {
             const std::int64_t i = i_steady ? 0 : q % n.u, j = j_steady ? 0 : q / (i_steady ? 1 : n.u);
             std::vector<SimilarityTransform> other;
             for (const Incidence& s : all)
-              other.push_back(c.w_pow(s.dk) * (j_steady ? c.v_pow(s.dj) : c.v_pow(j + s.dj)) *
-                              (i_steady ? c.u_pow(s.di) : c.u_pow(i + s.di)));
+              other.push_back(c.group(i_steady ? s.di : i + s.di, j_steady ? s.dj : j + s.dj, s.dk));
             SimilarityTransform base;
             if (!i_steady) base = c.u_pow(i);
             if (!j_steady) base = c.v_pow(j) * base;
@@ -154,11 +154,11 @@ MassMoments hub_corrections(const Context& c) {
       for (const Incidence& s : present) {
         SimilarityTransform t;
         if (i_steady) {
-          t = c.w_pow(s.dk) * c.v_pow(s.dj) * c.u_pow(s.di);
+          t = c.group(s.di, s.dj, s.dk);
         } else if (j_steady) {
-          t = c.w_pow(s.dk) * c.v_pow(s.dj) * c.u_pow(xi.first + s.di);
+          t = c.group(xi.first + s.di, s.dj, s.dk);
         } else {
-          t = c.w_pow(s.dk) * c.v_pow(xj.first + s.dj) * c.u_pow(xi.first + s.di);
+          t = c.group(xi.first + s.di, xj.first + s.dj, s.dk);
         }
         other.push_back(t);
       }
@@ -200,7 +200,7 @@ MassMoments omission_corrections(const Context& c) {
   // beams killed by them, each once; and the hubs around them
   std::set<std::tuple<std::int64_t, std::int64_t, std::int64_t, int>> killed;
   std::set<std::tuple<std::int64_t, std::int64_t, std::int64_t, int>> touched(gone.begin(), gone.end());
-  const Counts& n = c.def.counts;
+  const Counts& n = c.counts;
   for (const auto& [i, j, k, node] : gone) {
     for (const Incidence& s : incidences(c, node)) {
       if (!in_lattice(i, s.di, n.u) || !in_lattice(j, s.dj, n.v) || !in_lattice(k, s.dk, n.w)) continue;
@@ -228,7 +228,7 @@ MassMoments omission_corrections(const Context& c) {
 
 LatticeProperties finish(const Context& c, const MassMoments& pre) {
   // From pre-placement moments about P to world moments about G(P): only G's linear part acts.
-  const Similarity& G = c.lattice.placement();
+  const Similarity& G = c.G;
   SimilarityTransform linear = G.transform();
   linear.translation = Vec3(0.0);
   LatticeProperties out = properties_from_moments(transformed(pre, linear), G.apply_point(c.P));
@@ -239,6 +239,39 @@ LatticeProperties finish(const Context& c, const MassMoments& pre) {
   out.hub_shapes = c.hub_shapes;
   out.overlapping_hub_shapes = c.overlapping;
   return out;
+}
+
+// The reference the moments are taken about: node 0 of the middle group (the sums' P, placed).
+Vec3 reference_point(const Lattice& lattice) {
+  const Counts& n = lattice.counts();
+  return lattice.group_transform(n.u / 2, n.v / 2, n.w / 2).apply_point(lattice.definition().nodes[0].center);
+}
+
+// The sums over rows and slabs on the steady-brick view (the brick lattice: a re-indexing of the same
+// groups), or, for a layout that is not a steady brick, every hub integrated on its own.
+LatticeProperties closed_form_or_per_hub(const Lattice& lattice, const LatticePropertiesOptions& options,
+                                         Progress& progress) {
+  const Lattice* brick = lattice.brick_lattice();
+  if (!brick) {
+    progress.set_total(1);
+    LatticeProperties out = lattice_properties_brute_force(lattice, options);
+    progress.advance();
+    return out;
+  }
+  Context c(*brick);
+  c.hub_options = options.hub;
+  c.progress = &progress;
+  // Work units: beams of the rows enumerated, hub classes (an estimate; only the bar's pace depends on it).
+  const Counts& n = c.counts;
+  std::int64_t work = 1;
+  for (const BeamPattern& b : c.def.beams) work += c.i_steady(b) ? 0 : c.j_steady(b) ? n.u : n.u * n.v;
+  work += static_cast<std::int64_t>(c.def.nodes.size()) * 9 * n.u;
+  progress.set_total(work);
+  MassMoments total = ball_sum(c);
+  for (int p = 0; p < brick->pattern_count(); ++p) total += pattern_sum(c, p);
+  total += hub_corrections(c);
+  total += omission_corrections(c);
+  return finish(c, total);
 }
 
 }  // namespace
@@ -272,30 +305,18 @@ LatticeProperties lattice_properties(const Lattice& lattice, const LatticeProper
     verified = report.verified;
   }
   progress.check();
-  Context c(lattice);
-  c.hub_options = options.hub;
-  c.progress = &progress;
-  // Work units: beams of the rows enumerated, hub classes (an estimate; only the bar's pace depends on it).
-  std::int64_t work = 1;
-  for (const BeamPattern& b : lattice.definition().beams)
-    work += c.i_steady(b) ? 0 : c.j_steady(b) ? lattice.counts().u : lattice.counts().u * lattice.counts().v;
-  work += static_cast<std::int64_t>(lattice.node_count()) * 9 * lattice.counts().u;
-  progress.set_total(work);
-  MassMoments total = ball_sum(c);
-  for (int p = 0; p < lattice.pattern_count(); ++p) total += pattern_sum(c, p);
-  total += hub_corrections(c);
-  total += omission_corrections(c);
-  LatticeProperties out = finish(c, total);
+  LatticeProperties out = closed_form_or_per_hub(lattice, options, progress);
   out.clean_verified = verified;
   if (report.overlap_count > 0) {
     progress.check();
     // (no progress of its own: it would reset the bar's total; clusters are few and small)
     const HubUnionCorrection u = hub_union_correction(lattice, report.overlaps, out.reference, options.hub);
+    const LatticeProperties sums = out;
     out = properties_from_moments(out.moments + u.moments, out.reference);
     out.clean_verified = verified;
-    out.beam_shapes = c.beam_shapes;
-    out.hub_shapes = c.hub_shapes;
-    out.overlapping_hub_shapes = c.overlapping;
+    out.beam_shapes = sums.beam_shapes;
+    out.hub_shapes = sums.hub_shapes;
+    out.overlapping_hub_shapes = sums.overlapping_hub_shapes;
     out.overlap_count = report.overlap_count;
     out.union_clusters = u.clusters;
     out.union_hubs = u.hubs;
@@ -307,8 +328,7 @@ LatticeProperties lattice_properties(const Lattice& lattice, const LatticeProper
 }
 
 LatticeProperties lattice_properties_brute_force(const Lattice& lattice, const LatticePropertiesOptions& options) {
-  Context c(lattice);
-  const Vec3 reference = lattice.placement().apply_point(c.P);
+  const Vec3 reference = reference_point(lattice);
   std::atomic<std::int64_t> overlapping{0};
   const MassMoments total = tbb::parallel_deterministic_reduce(
       tbb::blocked_range<std::int64_t>(0, lattice.ball_count(), 256), MassMoments{},

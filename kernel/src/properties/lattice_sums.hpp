@@ -17,36 +17,42 @@ namespace steady::detail {
 // Powers of a step cached at most (104 bytes each): enough for every row a sum enumerates in practice.
 constexpr std::int64_t kMaxCachedPowers = 1'000'000;
 
-// Beams whose node ball crosses their mid-plane (beyond rounding) make a non-clean lattice.
-constexpr double kMidPlaneSlack = 1e-12;
-
 // The start indices x with 0 <= x < count and 0 <= x + offset < count: [lo, hi).
 struct IndexRange {
   std::int64_t lo = 0, hi = 0;
   std::int64_t size() const { return std::max<std::int64_t>(0, hi - lo); }
 };
-inline IndexRange pattern_range(std::int64_t count, int offset) {
-  return {std::max<std::int64_t>(0, -offset), std::min<std::int64_t>(count, count - offset)};
-}
+// A pattern's start groups along each direction (pattern_start_groups).
+inline IndexRange range_i(const IndexBlock& b) { return {b.i0, b.i1}; }
+inline IndexRange range_j(const IndexBlock& b) { return {b.j0, b.j1}; }
+inline IndexRange range_k(const IndexBlock& b) { return {b.k0, b.k1}; }
 
-// Everything the sums need, in pre-placement coordinates (group (i,j,k) is W^k V^j U^i; G comes last).
+// Everything the sums need, in pre-placement coordinates (group (i,j,k) is W^k V^j U^i; G comes last). The
+// lattice must be its own steady brick (Lattice::brick_lattice()).
 struct Context {
   const Lattice& lattice;
   const LatticeDefinition& def;
-  Similarity U, V, W;
+  const Counts& counts;
+  Similarity G, U, V, W;
   Vec3 P{0.0};  // reference point, pre-placement
   bool uv = false, uw = false, vw = false;  // pairs that commute exactly
   HubPropertiesOptions hub_options;
   Progress* progress = &no_progress();  // advanced once per beam row and hub class
   mutable std::atomic<std::int64_t> beam_shapes{0}, hub_shapes{0}, overlapping{0};
 
-  explicit Context(const Lattice& l) : lattice(l), def(l.definition()), U(l.step_u()), V(l.step_v()), W(l.step_w()) {
+  explicit Context(const Lattice& l)
+      : lattice(l), def(l.definition()), counts(l.counts()), G(brick_of(l).placement), U(brick_of(l).steps[0]),
+        V(brick_of(l).steps[1]), W(brick_of(l).steps[2]) {
     uv = exactly_commute(U, V);
     uw = exactly_commute(U, W);
     vw = exactly_commute(V, W);
     cache_powers();
-    const Counts& c = def.counts;
-    P = group(c.u / 2, c.v / 2, c.w / 2).apply_point(def.nodes[0].center);
+    P = group(counts.u / 2, counts.v / 2, counts.w / 2).apply_point(def.nodes[0].center);
+  }
+  static const SteadyBrick& brick_of(const Lattice& l) {
+    const SteadyBrick* brick = l.layout().steady_brick();
+    if (!brick || brick->reordered()) fail_input("lattice", "the closed-form sums need a steady brick in its own axes");
+    return *brick;
   }
   // Powers of the steps as matrices, cached for the indices the sums visit (every group and its neighbours
   // for U and V, the pattern offsets for W): the sums compose them instead of exponentiating generators.
@@ -68,13 +74,14 @@ struct Context {
       cache.resize(static_cast<std::size_t>(count + 2 * reach));
       for (std::int64_t n = -reach; n < count + reach; ++n) cache[n + reach] = s.power(static_cast<double>(n)).transform();
     };
-    fill(U, u_powers, def.counts.u);
-    fill(V, v_powers, def.counts.v);
+    fill(U, u_powers, counts.u);
+    fill(V, v_powers, counts.v);
     fill(W, w_powers, 1);
   }
-  // W^k V^j U^i for any integers (outside the lattice too: virtual neighbours of border groups).
+  // W^k V^j U^i for any integers (outside the lattice too: virtual neighbours of border groups): the placement
+  // formula without G (the sums place their totals by G once, in finish()).
   SimilarityTransform group(std::int64_t i, std::int64_t j, std::int64_t k) const {
-    return w_pow(k) * v_pow(j) * u_pow(i);
+    return SteadyBrick::place(SteadyBrick::row_prefix(SimilarityTransform{}, w_pow(k), v_pow(j)), u_pow(i));
   }
   SimilarityTransform about_P(const SimilarityTransform& t) const { return transform_about(t, P); }
   bool j_steady(const BeamPattern& b) const { return b.dk == 0 || vw; }
@@ -181,7 +188,7 @@ inline bool in_lattice(std::int64_t x, int offset, std::int64_t count) { return 
 // The hub of an actual node (i, j, k, n) at its actual place, with the stumps whose other group exists,
 // all of them (`generic`, as if nothing were omitted) or only those whose beams exist.
 inline HubShape actual_hub(const Context& c, const NodeId& id, bool generic) {
-  const Counts& n = c.def.counts;
+  const Counts& n = c.counts;
   std::vector<Incidence> present;
   std::vector<SimilarityTransform> other;
   for (const Incidence& s : incidences(c, id.n)) {

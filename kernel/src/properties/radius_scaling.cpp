@@ -15,6 +15,7 @@
 #include "properties/lattice_sums.hpp"
 #include "steady/query/hub_overlaps.hpp"
 #include "steady/core/memory_budget.hpp"
+#include "steady/core/constants.hpp"
 
 namespace steady {
 
@@ -22,7 +23,6 @@ using namespace detail;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // Beam shapes held in memory at most (48 bytes each); beyond, the model is refused (ResourceLimit).
 constexpr std::size_t kMaxBeamShapes = 50'000'000;
@@ -69,6 +69,9 @@ struct RadiusScaledVolume::Model {
   mutable std::vector<HubClass> hubs;
   double max_scale = std::numeric_limits<double>::infinity();
   HubPropertiesOptions hub_options;
+  bool per_element = false;  // a layout that is not a steady brick: every element its own shape, weight 1
+  void build_from_sums();
+  void build_per_element();
   void build_hub_classes() const;
 };
 
@@ -84,14 +87,50 @@ Lattice with_radius_scale(const Lattice& lattice, double scale) {
   return Lattice(std::move(d));
 }
 
+namespace {
+// The lattice the model is built on: its steady-brick view when it has one (the same groups), else itself.
+const Lattice& lattice_for_sums(const Lattice& lattice) {
+  const Lattice* brick = lattice.brick_lattice();
+  return brick ? *brick : lattice;
+}
+}  // namespace
+
 RadiusScaledVolume::RadiusScaledVolume(const Lattice& lattice, const HubPropertiesOptions& hub)
-    : model_(std::make_unique<Model>(lattice)) {
-  Model& m = *model_;
-  m.hub_options = hub;
+    : model_(std::make_unique<Model>(lattice_for_sums(lattice))) {
+  model_->hub_options = hub;
+  if (model_->lattice.layout().steady_brick())
+    model_->build_from_sums();
+  else
+    model_->build_per_element();
+}
+
+void RadiusScaledVolume::Model::build_per_element() {
+  per_element = true;
+  for (std::int64_t q = 0; q < lattice.ball_count(); ++q) {
+    const double R = lattice.ball(lattice.ball_id(q)).radius;
+    balls += 4.0 / 3.0 * kPi * R * R * R;
+  }
+  for (std::int64_t q = 0; q < lattice.beam_count(); ++q) {
+    const BeamId id = lattice.beam_id(q);
+    const BeamGeometry g = lattice.beam(id);
+    const Ball A = lattice.ball(lattice.beam_start(id)), B = lattice.ball(lattice.beam_end(id));
+    const double L = glm::length(B.center - A.center);
+    beams.push_back({L, A.radius, g.start.radius, B.radius, g.end.radius, 1.0});
+    max_scale = std::min(max_scale, 0.5 * L / std::max(A.radius, B.radius));
+    if (g.start.radius != g.end.radius) max_scale = std::min(max_scale, L / std::abs(g.start.radius - g.end.radius));
+  }
+  full_hubs.resize(static_cast<std::size_t>(lattice.ball_count()));
+  tbb::parallel_for(std::int64_t(0), lattice.ball_count(), [&](std::int64_t q) {
+    full_hubs[static_cast<std::size_t>(q)] = hub_shape(hub(lattice, lattice.ball_id(q)));
+  });
+}
+
+void RadiusScaledVolume::Model::build_from_sums() {
+  Model& m = *this;
   Context c(m.lattice);
   const LatticeDefinition& def = c.def;
-  const Counts& n = def.counts;
-  const double g3 = std::pow(lattice.placement().scale(), 3);
+  const Counts& n = lattice.counts();
+  const double g3 = std::pow(c.G.scale(), 3);
   // balls
   const double groups = scale_cubed_sum(c.U, 0, n.u) * scale_cubed_sum(c.V, 0, n.v) * scale_cubed_sum(c.W, 0, n.w);
   double template_balls = 0.0;
@@ -116,13 +155,14 @@ RadiusScaledVolume::RadiusScaledVolume(const Lattice& lattice, const HubProperti
   };
   for (int p = 0; p < lattice.pattern_count(); ++p) {
     const BeamPattern& b = def.beams[p];
-    const IndexRange ri = pattern_range(n.u, b.di), rj = pattern_range(n.v, b.dj), rk = pattern_range(n.w, b.dk);
+    const IndexBlock starts = pattern_start_groups(n, b);
+    const IndexRange ri = range_i(starts), rj = range_j(starts), rk = range_k(starts);
     if (ri.size() == 0 || rj.size() == 0 || rk.size() == 0) continue;
     const SimilarityTransform w_dk = c.w_pow(b.dk);
     const double along_k = g3 * scale_cubed_sum(c.W, rk.lo, rk.size());
     const double along_j = scale_cubed_sum(c.V, rj.lo, rj.size());
     if (c.i_steady(b)) {
-      add_beam(p, SimilarityTransform{}, w_dk * c.v_pow(b.dj) * c.u_pow(b.di),
+      add_beam(p, SimilarityTransform{}, c.group(b.di, b.dj, b.dk),
                along_k * along_j * scale_cubed_sum(c.U, ri.lo, ri.size()));
     } else if (c.j_steady(b)) {
       const SimilarityTransform head = w_dk * c.v_pow(b.dj);
@@ -172,8 +212,7 @@ RadiusScaledVolume::RadiusScaledVolume(const Lattice& lattice, const HubProperti
     const std::vector<Incidence> all = incidences(c, job.node);
     std::vector<SimilarityTransform> other;
     for (const Incidence& s : all)
-      other.push_back(c.w_pow(s.dk) * (job.j_steady ? c.v_pow(s.dj) : c.v_pow(job.j + s.dj)) *
-                      (job.i_steady ? c.u_pow(s.di) : c.u_pow(job.i + s.di)));
+      other.push_back(c.group(job.i_steady ? s.di : job.i + s.di, job.j_steady ? s.dj : job.j + s.dj, s.dk));
     SimilarityTransform base;
     if (!job.i_steady) base = c.u_pow(job.i);
     if (!job.j_steady) base = c.v_pow(job.j) * base;
@@ -195,10 +234,14 @@ RadiusScaledVolume::RadiusScaledVolume(const Lattice& lattice, const HubProperti
 }
 
 void RadiusScaledVolume::Model::build_hub_classes() const {
+  if (per_element) {
+    for (const HubShape& h : full_hubs) hubs.push_back({h, 1.0});
+    return;
+  }
   Context c(lattice);
   const LatticeDefinition& def = c.def;
-  const Counts& n = def.counts;
-  const double g3 = std::pow(lattice.placement().scale(), 3);
+  const Counts& n = lattice.counts();
+  const double g3 = std::pow(c.G.scale(), 3);
   // hub classes, as in lattice_properties (built in parallel)
   struct ClassJob {
     int node;
@@ -233,8 +276,7 @@ void RadiusScaledVolume::Model::build_hub_classes() const {
         present.push_back(s);
     if (present.size() < 2) return;
     for (const Incidence& s : present)
-      other.push_back(c.w_pow(s.dk) * (job.j_steady ? c.v_pow(s.dj) : c.v_pow(job.xj.first + s.dj)) *
-                      (job.i_steady ? c.u_pow(s.di) : c.u_pow(job.xi.first + s.di)));
+      other.push_back(c.group(job.i_steady ? s.di : job.xi.first + s.di, job.j_steady ? s.dj : job.xj.first + s.dj, s.dk));
     SimilarityTransform base;
     if (!job.i_steady) base = c.u_pow(job.xi.first);
     if (!job.j_steady) base = c.v_pow(job.xj.first) * base;
@@ -461,20 +503,25 @@ RadiusScaleSolution radius_scale_for_mass(const Lattice& lattice, double mass, d
 }
 
 double cell_envelope_volume(const Lattice& lattice) {
+  const Lattice* brick_lattice = lattice.brick_lattice();
+  if (!brick_lattice)
+    fail_input("lattice", "its layout (" + lattice.layout().kind() + ") has no cell: give the envelope volume of a body "
+                          "instead");
+  const SteadyBrick& brick = *brick_lattice->layout().steady_brick();
+  const Similarity &U = brick.steps[0], &V = brick.steps[1], &W = brick.steps[2];
   const LatticeDefinition& d = lattice.definition();
   Vec3 o(0.0);
   for (const TemplateNode& n : d.nodes) o += n.center;
   o /= static_cast<double>(d.nodes.size());
-  const Vec3 a = lattice.step_u().apply_point(o) - o, b = lattice.step_v().apply_point(o) - o,
-             c = lattice.step_w().apply_point(o) - o;
+  const Vec3 a = U.apply_point(o) - o, b = V.apply_point(o) - o, c = W.apply_point(o) - o;
   const double cell = std::abs(glm::dot(a, glm::cross(b, c)));
   const double scale = std::max({glm::length(a), glm::length(b), glm::length(c)});
   if (!(cell > 1e-12 * scale * scale * scale))
     fail_input("lattice", "its steps U, V, W span no volume (a direction without a step?): give the envelope volume "
                           "of a body instead");
-  const Counts& n = d.counts;
-  return std::pow(lattice.placement().scale(), 3) * cell * scale_cubed_sum(lattice.step_u(), 0, n.u) *
-         scale_cubed_sum(lattice.step_v(), 0, n.v) * scale_cubed_sum(lattice.step_w(), 0, n.w);
+  const Counts& n = brick_lattice->counts();
+  return std::pow(brick.placement.scale(), 3) * cell * scale_cubed_sum(U, 0, n.u) * scale_cubed_sum(V, 0, n.v) *
+         scale_cubed_sum(W, 0, n.w);
 }
 
 }  // namespace steady

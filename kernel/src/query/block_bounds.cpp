@@ -5,13 +5,9 @@
 #include <vector>
 
 #include "lattice/power_table.hpp"
+#include "steady/core/errors.hpp"
 
 namespace steady {
-
-IndexBlock intersect(const IndexBlock& a, const IndexBlock& b) {
-  return {std::max(a.i0, b.i0), std::min(a.i1, b.i1), std::max(a.j0, b.j0),
-          std::min(a.j1, b.j1), std::max(a.k0, b.k0), std::min(a.k1, b.k1)};
-}
 
 namespace {
 
@@ -65,12 +61,12 @@ struct BlockBounds::Impl {
   Ball templ;
   Counts counts;
 
-  Impl(const Lattice& lat, std::int64_t margin)
-      : g(lat.placement().transform()),
-        g_scale(lat.placement().scale()),
-        u(lat.step_u(), -margin, lat.counts().u - 1 + margin),
-        v(lat.step_v(), -margin, lat.counts().v - 1 + margin),
-        w(lat.step_w(), -margin, lat.counts().w - 1 + margin),
+  Impl(const SteadyBrick& brick, const Lattice& lat, std::int64_t margin)
+      : g(brick.placement.transform()),
+        g_scale(brick.placement.scale()),
+        u(brick.steps[0], -margin, lat.counts().u - 1 + margin),
+        v(brick.steps[1], -margin, lat.counts().v - 1 + margin),
+        w(brick.steps[2], -margin, lat.counts().w - 1 + margin),
         counts(lat.counts()) {
     const auto& nodes = lat.definition().nodes;
     Vec3 lo(nodes[0].center), hi(nodes[0].center);
@@ -101,8 +97,17 @@ struct BlockBounds::Impl {
   }
 };
 
+namespace {
+const SteadyBrick& own_brick(const Lattice& lattice) {
+  const SteadyBrick* brick = lattice.layout().steady_brick();
+  if (!brick || brick->reordered())
+    fail_input("lattice", "block bounds need a steady brick in the U V W order (use Lattice::brick_lattice())");
+  return *brick;
+}
+}  // namespace
+
 BlockBounds::BlockBounds(const Lattice& lattice, std::int64_t margin)
-    : impl_(std::make_unique<Impl>(lattice, margin)) {}
+    : impl_(std::make_unique<Impl>(own_brick(lattice), lattice, margin)) {}
 BlockBounds::~BlockBounds() = default;
 BlockBounds::BlockBounds(BlockBounds&&) noexcept = default;
 BlockBounds& BlockBounds::operator=(BlockBounds&&) noexcept = default;

@@ -1,7 +1,9 @@
 #pragma once
-// Evaluates lattice elements from power tables, bit-identical to Lattice::ball and Lattice::beam (same
-// operations in the same order), so every query path tests exactly the geometry the lattice lists and
-// the naive and accelerated answers can be compared element for element.
+// Evaluates lattice elements from power tables, bit-identical to Lattice::ball and Lattice::beam (the layout's
+// placement formula, SteadyBrick::row_prefix and place, over the same powers), so every query path tests
+// exactly the geometry the lattice lists and the naive and accelerated answers can be compared element for
+// element. The power tables exist for a steady brick in its own axes (steady()); for any other layout only
+// the groups inside the lattice are evaluated, through the layout.
 #include <cstdint>
 
 #include "lattice/power_table.hpp"
@@ -16,15 +18,20 @@ class ElementEvaluator {
   ElementEvaluator(const Lattice& lattice, std::int64_t margin);
 
   const Lattice& lattice() const { return *lattice_; }
+  // Whether the power tables (u(), v(), w(), row_prefix) exist: the fast paths' precondition.
+  bool steady() const { return steady_; }
   const PowerTable& u() const { return u_; }
   const PowerTable& v() const { return v_; }
   const PowerTable& w() const { return w_; }
   const SimilarityTransform& placement() const { return g_; }
 
-  // (G W^k) V^j, the prefix Lattice::group_transform multiplies by U^i.
-  SimilarityTransform row_prefix(std::int64_t j, std::int64_t k) const { return (g_ * w_.at(k)) * v_.at(j); }
+  // (G W^k) V^j, the prefix Lattice::group_transform multiplies by U^i (steady() only).
+  SimilarityTransform row_prefix(std::int64_t j, std::int64_t k) const {
+    return SteadyBrick::row_prefix(g_, w_.at(k), v_.at(j));
+  }
   SimilarityTransform group(std::int64_t i, std::int64_t j, std::int64_t k) const {
-    return row_prefix(j, k) * u_.at(i);
+    if (!steady_) return lattice_->group_transform(i, j, k);
+    return SteadyBrick::place(row_prefix(j, k), u_.at(i));
   }
   // The ball of node n under a group transform.
   Ball node_ball(const SimilarityTransform& group, int n) const {
@@ -50,6 +57,7 @@ class ElementEvaluator {
 
  private:
   const Lattice* lattice_;
+  bool steady_ = false;
   SimilarityTransform g_;
   PowerTable u_, v_, w_;
 };

@@ -2,7 +2,8 @@
 
 #include <tbb/parallel_for.h>
 
-#include "query/element_evaluator.hpp"
+#include "query/hit_sinks.hpp"
+
 #include "steady/core/memory_budget.hpp"
 
 namespace steady {
@@ -46,22 +47,23 @@ void FilteredLattice::ball_mask(std::uint8_t* out) const {
   // One batch per (j, k) row of groups: its nodes' ids and balls, filtered together.
   const Counts& c = lat.counts();
   const int nodes = lat.node_count();
-  const detail::ElementEvaluator eval(lat, 0);
   auto row = [&](std::int64_t r) {
     const std::int64_t j = r % c.v, k = r / c.v;
     std::vector<NodeId> ids;
     std::vector<Ball> balls;
     std::vector<std::int64_t> index;
     ids.reserve(static_cast<std::size_t>(c.u * nodes));
-    const SimilarityTransform prefix = eval.row_prefix(j, k);
+    std::vector<SimilarityTransform> groups(static_cast<std::size_t>(c.u));
+    lat.layout().row_transforms(j, k, groups.data());
     for (std::int64_t i = 0; i < c.u; ++i) {
-      const SimilarityTransform g = prefix * eval.u().at(i);
+      const SimilarityTransform& g = groups[static_cast<std::size_t>(i)];
       for (int node = 0; node < nodes; ++node) {
         const NodeId id{i, j, k, node};
         const std::int64_t x = lat.ball_index(id);
         if (x < 0) continue;
         ids.push_back(id);
-        balls.push_back(eval.node_ball(g, node));
+        const TemplateNode& t = lat.definition().nodes[static_cast<std::size_t>(node)];
+        balls.push_back(g.apply(Ball{t.center, t.radius}));
         index.push_back(x);
       }
     }
@@ -87,7 +89,8 @@ void FilteredLattice::beam_mask_from(const std::uint8_t* balls, std::uint8_t* ou
       const std::int64_t j = r % c.v, k = r / c.v;
       if (dense) {
         // Nothing omitted: a row's beams are consecutive, and ball indices are the linear node indices.
-        const std::int64_t i0 = std::max<std::int64_t>(0, -b.di), i1 = std::min<std::int64_t>(c.u, c.u - b.di);
+        const IndexBlock starts = pattern_start_groups(c, b);
+        const std::int64_t i0 = starts.i0, i1 = starts.i1;
         if (i1 <= i0) return;
         const std::int64_t first = lat.beam_index(BeamId{i0, j, k, p});
         if (first < 0) return;
@@ -139,20 +142,6 @@ struct FilterSink : HitSink {
     return inner.on_hit(h);
   }
 };
-struct CollectSink : HitSink {
-  BallQueryResult result;
-  bool on_hit(const ElementHit& hit) override {
-    (hit.is_beam ? result.beams : result.balls).push_back(hit.index);
-    return true;
-  }
-};
-struct AnySink : HitSink {
-  bool found = false;
-  bool on_hit(const ElementHit&) override {
-    found = true;
-    return false;
-  }
-};
 }  // namespace
 
 void FilteredLattice::visit(const Ball& query, HitSink& sink) const {
@@ -165,17 +154,11 @@ void FilteredLattice::visit(const Ball& query, HitSink& sink) const {
 }
 
 BallQueryResult FilteredLattice::query_ball(const Ball& query) const {
-  CollectSink sink;
-  visit(query, sink);
-  std::sort(sink.result.balls.begin(), sink.result.balls.end());
-  std::sort(sink.result.beams.begin(), sink.result.beams.end());
-  return std::move(sink.result);
+  return detail::collect_hits([&](HitSink& sink) { visit(query, sink); });
 }
 
 bool FilteredLattice::touches(const Ball& query) const {
-  AnySink sink;
-  visit(query, sink);
-  return sink.found;
+  return detail::any_hit([&](HitSink& sink) { visit(query, sink); });
 }
 
 }  // namespace steady

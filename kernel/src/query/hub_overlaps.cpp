@@ -11,6 +11,7 @@
 
 #include "steady/lattice/convex_distance.hpp"
 #include "steady/lattice/hub.hpp"
+#include "steady/core/errors.hpp"
 #include "steady/core/memory_budget.hpp"
 
 namespace steady {
@@ -228,11 +229,29 @@ std::string HubOverlapReport::describe(std::size_t max_listed) const {
 }
 
 HubOverlapReport check_hub_overlaps(const Lattice& lattice, std::size_t max_reports, Progress& progress, HubOverlapCheckMethod method) {
+  // The slab window needs the steady brick's last applied step: with another order of application it runs on
+  // the brick lattice, whose hubs are this lattice's, and the report names them in this lattice's indices.
+  const Lattice* brick = lattice.brick_lattice();
+  if (brick && brick != &lattice) {
+    HubOverlapReport report = check_hub_overlaps(*brick, max_reports, progress, method);
+    for (HubOverlap& o : report.overlaps) {
+      o.a = lattice.from_brick(o.a);
+      o.b = lattice.from_brick(o.b);
+    }
+    return report;
+  }
   HubOverlapReport report;
   Collector out{{}, &report, max_reports};
   const std::int64_t count = lattice.ball_count();
+  if (!brick && method == HubOverlapCheckMethod::SlabWindow)
+    fail_input("method", "the slab window needs a steady-brick layout (this one is " + lattice.layout().kind() + ")");
   const bool all_hubs = method == HubOverlapCheckMethod::AllHubs ||
                         (method == HubOverlapCheckMethod::Automatic && count <= kDirectHubOverlapCheckHubs);
+  if (!brick && !all_hubs) {  // too many hubs to compare them all, and no steadiness to lean on
+    report.hubs_checked = 0;
+    finish(report, max_reports);
+    return report;  // not verified
+  }
   if (all_hubs) {
     require_memory(static_cast<std::uint64_t>(count) * bytes_per_hub(lattice), "clean check");
     progress.set_total(count);
@@ -276,7 +295,7 @@ HubOverlapReport check_hub_overlaps(const Lattice& lattice, std::size_t max_repo
     std::int64_t k1, k2, multiplicity;
   };
   std::vector<SlabPair> pairs;
-  const Similarity& W = lattice.step_w();
+  const Similarity& W = lattice.layout().steady_brick()->steps[2];  // the last applied step
   for (std::int64_t delta = 0; delta < w; ++delta) {
     if (delta > 0 && !rep_slab.empty() && !image_box_meets(W.power(static_cast<double>(delta)))) continue;
     for (std::int64_t k = 0; k + delta < w; ++k) {

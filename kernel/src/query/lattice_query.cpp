@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
+#include "query/hit_sinks.hpp"
 #include "query/query_internal.hpp"
 #include "steady/core/errors.hpp"
 #include "steady/query/query_tolerance.hpp"
@@ -52,10 +54,7 @@ std::int64_t largest_offset(const Lattice& lattice) {
 }
 }  // namespace
 
-QueryState::QueryState(const Lattice& lat)
-    : lattice(lat), eval(lat, largest_offset(lat)), bounds(lat, largest_offset(lat)), margin(largest_offset(lat)) {
-  bound = bounds.lattice_bound();
-  length_scale = glm::length(bound.center) + bound.radius;
+QueryState::QueryState(const Lattice& lat) : lattice(lat), eval(lat, largest_offset(lat)), margin(largest_offset(lat)) {
   const Counts& c = lat.counts();
   const auto& nodes = lat.definition().nodes;
   for (const auto& n : nodes) node_templates.push_back({n.center, n.radius});
@@ -69,17 +68,33 @@ QueryState::QueryState(const Lattice& lat)
       reach[a][0] = std::min<std::int64_t>(reach[a][0], d[a]);
       reach[a][1] = std::max<std::int64_t>(reach[a][1], d[a]);
     }
-    IndexBlock s{std::max<std::int64_t>(0, -b.di), std::min<std::int64_t>(c.u, c.u - b.di),
-                 std::max<std::int64_t>(0, -b.dj), std::min<std::int64_t>(c.v, c.v - b.dj),
-                 std::max<std::int64_t>(0, -b.dk), std::min<std::int64_t>(c.w, c.w - b.dk)};
-    pattern_starts.push_back(s);
+    pattern_starts.push_back(pattern_start_groups(c, b));
   }
+  if (eval.steady()) {
+    bounds.emplace(lat, margin);
+    bound = bounds->lattice_bound();
+    length_scale = glm::length(bound.center) + bound.radius;
+    prepare_brick_paths();
+  } else {
+    bound = bound_of_balls(lat);
+    length_scale = glm::length(bound.center) + bound.radius;
+    plan.steady_reason = "the lattice's layout (" + lat.layout().kind() + ") is not a steady brick";
+    plan.slabs_reason = plan.constant_reason = plan.steady_reason;
+    plan.automatic = QueryMethod::Naive;
+  }
+}
+
+void QueryState::prepare_brick_paths() {
+  const Lattice& lat = lattice;
+  const Counts& c = lat.counts();
+  const auto& nodes = lat.definition().nodes;
+  const SteadyBrick& brick = *lat.layout().steady_brick();
   auto world = [&](const Similarity& step, std::int64_t count) {
-    return PowerTable(lat.placement() * step * lat.placement().inverse(), -margin, count - 1 + margin);
+    return PowerTable(brick.placement * step * brick.placement.inverse(), -margin, count - 1 + margin);
   };
-  world_u = world(lat.step_u(), c.u);
-  world_v = world(lat.step_v(), c.v);
-  world_w = world(lat.step_w(), c.w);
+  world_u = world(brick.steps[0], c.u);
+  world_v = world(brick.steps[1], c.v);
+  world_w = world(brick.steps[2], c.w);
   const std::int64_t slots = c.u + 2 * margin;
   if (slots * lat.node_count() <= kMaxPowerTableEntries) {
     for (std::int64_t i = -margin; i < c.u + margin; ++i) {
@@ -119,6 +134,25 @@ QueryState::QueryState(const Lattice& lat)
   }
 }
 
+Ball bound_of_balls(const Lattice& lat) {
+  // Every beam lies in the hull of its end balls, which lie in their nodes' balls: the box of the balls holds
+  // the whole lattice.
+  const Counts& c = lat.counts();
+  Vec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+  std::vector<SimilarityTransform> row(static_cast<std::size_t>(c.u));
+  for (std::int64_t k = 0; k < c.w; ++k)
+    for (std::int64_t j = 0; j < c.v; ++j) {
+      lat.layout().row_transforms(j, k, row.data());
+      for (const SimilarityTransform& t : row)
+        for (const TemplateNode& n : lat.definition().nodes) {
+          const Ball b = t.apply(Ball{n.center, n.radius});
+          lo = glm::min(lo, b.center - Vec3(b.radius));
+          hi = glm::max(hi, b.center + Vec3(b.radius));
+        }
+    }
+  return {0.5 * (lo + hi), 0.5 * glm::length(hi - lo)};
+}
+
 namespace {
 thread_local std::vector<std::unique_ptr<Scratch>> g_scratch_pool;
 thread_local std::size_t g_scratch_depth = 0;
@@ -140,9 +174,40 @@ double QueryState::inflation(const Ball& query) const {
 
 }  // namespace detail
 
+namespace {
+// The lattice the query paths run on: the brick lattice when the layout's steps apply in another order (its
+// hits are translated back), else the lattice itself.
+const Lattice& lattice_for_paths(const Lattice& lattice) {
+  const Lattice* brick = lattice.brick_lattice();
+  return brick ? *brick : lattice;
+}
+
+// Forwards hits found on the brick lattice with the lattice's own indices.
+struct FromBrickSink : HitSink {
+  const Lattice& lattice;
+  HitSink& inner;
+  FromBrickSink(const Lattice& l, HitSink& s) : lattice(l), inner(s) {}
+  bool on_hit(const ElementHit& hit) override {
+    ElementHit h = hit;
+    if (h.is_beam) {
+      const BeamId id = lattice.from_brick(BeamId{h.i, h.j, h.k, h.kind});
+      h.i = id.i, h.j = id.j, h.k = id.k;
+      h.index = lattice.beam_index(id);
+    } else {
+      const NodeId id = lattice.from_brick(NodeId{h.i, h.j, h.k, h.kind});
+      h.i = id.i, h.j = id.j, h.k = id.k;
+      h.index = lattice.ball_index(id);
+    }
+    return inner.on_hit(h);
+  }
+};
+}  // namespace
+
 struct LatticeQuery::Impl {
-  detail::QueryState state;
-  explicit Impl(const Lattice& lattice) : state(lattice) {}
+  const Lattice& lattice;     // as the caller gave it
+  detail::QueryState state;   // on lattice_for_paths(lattice)
+  explicit Impl(const Lattice& l) : lattice(l), state(lattice_for_paths(l)) {}
+  bool translates() const { return &state.lattice != &lattice; }
 };
 
 namespace {
@@ -153,14 +218,20 @@ LatticeQuery::LatticeQuery(const Lattice& lattice) : impl_(std::make_unique<Impl
 LatticeQuery::~LatticeQuery() = default;
 LatticeQuery::LatticeQuery(LatticeQuery&&) noexcept = default;
 
-const Lattice& LatticeQuery::lattice() const { return impl_->state.lattice; }
+const Lattice& LatticeQuery::lattice() const { return impl_->lattice; }
 const QueryPlan& LatticeQuery::plan() const { return impl_->state.plan; }
-const BlockBounds& LatticeQuery::block_bounds() const { return impl_->state.bounds; }
+const BlockBounds& LatticeQuery::block_bounds() const {
+  if (!impl_->state.bounds) fail_input("block_bounds", impl_->state.plan.steady_reason);
+  return *impl_->state.bounds;
+}
 const Ball& LatticeQuery::bound() const { return impl_->state.bound; }
 std::int64_t LatticeQuery::last_candidate_count() { return g_last_candidates; }
 
 QueryMethod LatticeQuery::resolve(QueryMethod method) const {
   const QueryPlan& p = impl_->state.plan;
+  if (method != QueryMethod::Auto && method != QueryMethod::Naive && !p.steady_reason.empty())
+    fail_input("method", "'" + std::string(to_string(method)) + "' does not apply: " + p.steady_reason +
+                             " (use 'naive' or 'auto')");
   switch (method) {
     case QueryMethod::Auto: return p.automatic;
     case QueryMethod::Slabs:
@@ -175,10 +246,12 @@ QueryMethod LatticeQuery::resolve(QueryMethod method) const {
   }
 }
 
-void LatticeQuery::visit(const Ball& query, HitSink& sink, QueryMethod method) const {
+void LatticeQuery::visit(const Ball& query, HitSink& caller_sink, QueryMethod method) const {
   validate_query_ball(query, "query");
   const detail::QueryState& q = impl_->state;
   const QueryMethod m = resolve(method);
+  FromBrickSink translated(impl_->lattice, caller_sink);
+  HitSink& sink = impl_->translates() ? static_cast<HitSink&>(translated) : caller_sink;
   detail::Probe probe{q, query, query, sink};
   probe.inflated.radius = query.radius + q.inflation(query);
   if (m == QueryMethod::Slabs || m == QueryMethod::PaperSlabs) probe.inflated.radius += q.plan.slabs_inflation;
@@ -199,35 +272,13 @@ void LatticeQuery::visit(const Ball& query, HitSink& sink, QueryMethod method) c
   g_last_candidates = probe.candidates;
 }
 
-namespace {
-struct CollectSink : HitSink {
-  BallQueryResult result;
-  bool on_hit(const ElementHit& hit) override {
-    (hit.is_beam ? result.beams : result.balls).push_back(hit.index);
-    return true;
-  }
-};
-struct AnySink : HitSink {
-  bool found = false;
-  bool on_hit(const ElementHit&) override {
-    found = true;
-    return false;
-  }
-};
-}  // namespace
 
 BallQueryResult LatticeQuery::query_ball(const Ball& query, QueryMethod method) const {
-  CollectSink sink;
-  visit(query, sink, method);
-  std::sort(sink.result.balls.begin(), sink.result.balls.end());
-  std::sort(sink.result.beams.begin(), sink.result.beams.end());
-  return std::move(sink.result);
+  return detail::collect_hits([&](HitSink& sink) { visit(query, sink, method); });
 }
 
 bool LatticeQuery::touches(const Ball& query, QueryMethod method) const {
-  AnySink sink;
-  visit(query, sink, method);
-  return sink.found;
+  return detail::any_hit([&](HitSink& sink) { visit(query, sink, method); });
 }
 
 }  // namespace steady

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string>
 
+#include "query/hit_sinks.hpp"
 #include "steady/core/errors.hpp"
 #include "steady/query/interference.hpp"
 #include "steady/core/memory_budget.hpp"
@@ -32,14 +33,6 @@ Vec3 point_at(const double* p, std::size_t i, const char* field) {
 void validate_points(const double* p, std::size_t n, const char* field) {
   for (std::size_t i = 0; i < n; ++i) point_at(p, i, field);
 }
-
-struct AnySink : HitSink {
-  bool found = false;
-  bool on_hit(const ElementHit&) override {
-    found = true;
-    return false;
-  }
-};
 
 struct NearestSink : HitSink {
   double best = kInf;
@@ -109,18 +102,14 @@ double typical_element_size(const Lattice& lattice) {
   double r = 0.0;
   for (const auto& n : lattice.definition().nodes) r += n.radius;
   r /= static_cast<double>(lattice.node_count());
-  const Counts& c = lattice.counts();
-  const double mean_log_scale = lattice.placement().log_scale() +
-                                0.5 * (static_cast<double>(c.u - 1) * lattice.step_u().log_scale() +
-                                       static_cast<double>(c.v - 1) * lattice.step_v().log_scale() +
-                                       static_cast<double>(c.w - 1) * lattice.step_w().log_scale());
+  const double mean_log_scale = lattice.layout().mean_log_scale();
   return r * std::exp(mean_log_scale);
 }
 
 void contains(const InterferenceSource& source, const double* points, std::size_t n, std::uint8_t* inside) {
   validate_points(points, n, "points");
   tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
-    AnySink sink;
+    detail::FirstHitSink sink;
     source.visit(Ball{point_at(points, i, "points"), 0.0}, sink);
     inside[i] = sink.found ? 1 : 0;
   });
@@ -182,7 +171,7 @@ void voxelize(const InterferenceSource& source, const Vec3& lo, const Vec3& hi, 
     const std::int64_t ix = row / ny, iy = row % ny;
     for (std::int64_t iz = 0; iz < nz; ++iz) {
       const Vec3 p = lo + (Vec3(static_cast<double>(ix), static_cast<double>(iy), static_cast<double>(iz)) + 0.5) * cell;
-      AnySink sink;
+      detail::FirstHitSink sink;
       source.visit(Ball{p, 0.0}, sink);
       out[row * nz + iz] = sink.found ? 1 : 0;
     }

@@ -39,7 +39,7 @@ void visit_blocks(const QueryState& q, Probe& probe) {
   const int kinds = nodes + static_cast<int>(patterns.size());
   const bool masked = kinds <= kMaskKinds;
   const Ball& query = probe.inflated;
-  const Ball& templ = q.bounds.template_bound();
+  const Ball& templ = q.bounds->template_bound();
   const IndexBlock lattice_block{0, c.u, 0, c.v, 0, c.w};
   auto gap_to = [&](const Ball& b) { return distance_to_ball(query.center, b) - query.radius; };
 
@@ -48,7 +48,7 @@ void visit_blocks(const QueryState& q, Probe& probe) {
     std::uint64_t mask = 0;
     for (int n = 0; n < nodes; ++n) {
       const Ball& t = q.node_templates[static_cast<std::size_t>(n)];
-      if (gap_to(q.bounds.bound(t.center, t.radius, b).ball) <= 0.0) mask |= std::uint64_t(1) << n;
+      if (gap_to(q.bounds->bound(t.center, t.radius, b).ball) <= 0.0) mask |= std::uint64_t(1) << n;
     }
     for (int p = 0; p < static_cast<int>(patterns.size()); ++p) {
       const IndexBlock s = intersect(b, q.pattern_starts[static_cast<std::size_t>(p)]);
@@ -56,8 +56,8 @@ void visit_blocks(const QueryState& q, Probe& probe) {
       const BeamPattern& bp = patterns[static_cast<std::size_t>(p)];
       const Ball& ts = q.beam_start_templates[static_cast<std::size_t>(p)];
       const Ball& te = q.beam_end_templates[static_cast<std::size_t>(p)];
-      const Ball bs = q.bounds.bound(ts.center, ts.radius, s).ball;
-      const Ball be = q.bounds.bound(te.center, te.radius, s.shifted(bp.di, bp.dj, bp.dk)).ball;
+      const Ball bs = q.bounds->bound(ts.center, ts.radius, s).ball;
+      const Ball be = q.bounds->bound(te.center, te.radius, s.shifted(bp.di, bp.dj, bp.dk)).ball;
       if (distance_to_hull(query.center, bs, be) <= query.radius) mask |= std::uint64_t(1) << (nodes + p);
     }
     return mask;
@@ -69,7 +69,7 @@ void visit_blocks(const QueryState& q, Probe& probe) {
         IndexBlock{b.i0 + q.reach[0][0], b.i1 + q.reach[0][1], b.j0 + q.reach[1][0], b.j1 + q.reach[1][1],
                    b.k0 + q.reach[2][0], b.k1 + q.reach[2][1]},
         lattice_block);
-    const BlockBound whole = q.bounds.bound(templ.center, templ.radius, ext);
+    const BlockBound whole = q.bounds->bound(templ.center, templ.radius, ext);
     e.block = b;
     e.gap = gap_to(whole.ball);
     for (int a = 0; a < 3; ++a) e.spread[a] = whole.spread[a];
@@ -87,7 +87,7 @@ void visit_blocks(const QueryState& q, Probe& probe) {
       if (masked && !(mask >> n & 1)) continue;
       if (!masked) {
         const Ball& t = q.node_templates[static_cast<std::size_t>(n)];
-        if (gap_to(q.bounds.bound(t.center, t.radius, b).ball) > 0.0) continue;
+        if (gap_to(q.bounds->bound(t.center, t.radius, b).ball) > 0.0) continue;
       }
       for (std::int64_t k = b.k0; k < b.k1; ++k)
         for (std::int64_t j = b.j0; j < b.j1; ++j) {
@@ -104,8 +104,8 @@ void visit_blocks(const QueryState& q, Probe& probe) {
         const BeamPattern& bp = patterns[static_cast<std::size_t>(p)];
         const Ball& ts = q.beam_start_templates[static_cast<std::size_t>(p)];
         const Ball& te = q.beam_end_templates[static_cast<std::size_t>(p)];
-        const Ball bs = q.bounds.bound(ts.center, ts.radius, s).ball;
-        const Ball be = q.bounds.bound(te.center, te.radius, s.shifted(bp.di, bp.dj, bp.dk)).ball;
+        const Ball bs = q.bounds->bound(ts.center, ts.radius, s).ball;
+        const Ball be = q.bounds->bound(te.center, te.radius, s.shifted(bp.di, bp.dj, bp.dk)).ball;
         if (distance_to_hull(query.center, bs, be) > query.radius) continue;
       }
       for (std::int64_t k = s.k0; k < s.k1; ++k)

@@ -2,6 +2,7 @@
 // Shared state of the ball-interference paths (lattice_query.cpp dispatches to query_naive.cpp,
 // query_rangefinder.cpp and query_blocks.cpp; query_plan.cpp detects which apply).
 #include <array>
+#include <optional>
 #include <cstdint>
 #include <vector>
 
@@ -19,10 +20,13 @@ struct GroupTemplates {
   void fill(const QueryState& q, const std::vector<SimilarityTransform>& prefix, std::int64_t i);
 };
 
+// The query paths' view of a lattice: for a steady brick in its own axes, power tables, block bounds and the
+// plan of the fast paths; for any other layout only what the naive path needs (QueryPlan::steady_reason says
+// why the others do not apply).
 struct QueryState {
   const Lattice& lattice;
   ElementEvaluator eval;
-  BlockBounds bounds;
+  std::optional<BlockBounds> bounds;  // steady bricks only
   Ball bound;                 // contains the whole lattice
   double length_scale = 1.0;  // |bound.center| + bound.radius
   QueryPlan plan;
@@ -62,6 +66,7 @@ struct QueryState {
   }
 
   explicit QueryState(const Lattice& lattice);
+  void prepare_brick_paths();
   // The inflated radius used for ranges and bounds (kQueryInflation, kQueryInflationPerStep).
   double inflation(const Ball& query) const;
 };
@@ -192,5 +197,7 @@ void visit_blocks(const QueryState& q, Probe& probe);
 
 // Fills q.plan (query_plan.cpp).
 void detect_plan(QueryState& q);
+// A ball containing every element, from every group's balls (any layout: O(groups)).
+Ball bound_of_balls(const Lattice& lattice);
 
 }  // namespace steady::detail

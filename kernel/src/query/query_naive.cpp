@@ -26,14 +26,13 @@ void visit_naive(const QueryState& q, Probe& probe) {
   auto ball_at = [&](std::int64_t i, std::int64_t j, std::int64_t k, int n) -> const Ball& {
     return cache[static_cast<std::size_t>(slot(k) * slab_size + (j * c.u + i) * nodes + n)];
   };
+  std::vector<SimilarityTransform> row(static_cast<std::size_t>(c.u));
   auto fill = [&](std::int64_t k) {
     Ball* out = &cache[static_cast<std::size_t>(slot(k) * slab_size)];
     for (std::int64_t j = 0; j < c.v; ++j) {
-      const SimilarityTransform prefix = q.eval.row_prefix(j, k);
-      for (std::int64_t i = 0; i < c.u; ++i) {
-        const SimilarityTransform g = prefix * q.eval.u().at(i);
+      lat.layout().row_transforms(j, k, row.data());  // any layout: this path is every layout's fallback
+      for (const SimilarityTransform& g : row)
         for (int n = 0; n < nodes; ++n) *out++ = q.eval.node_ball(g, n);
-      }
     }
   };
   // Slabs k + dk_lo .. k + dk_hi must be in the ring while slab k is scanned; fill them in order.

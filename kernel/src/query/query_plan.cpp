@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "query/query_internal.hpp"
+#include "steady/core/rotation.hpp"
 #include "steady/query/query_tolerance.hpp"
 
 namespace steady::detail {
@@ -37,19 +38,7 @@ Mat3 align(const Vec3& from, const Vec3& to) {
   const Vec3 axis = glm::cross(from, to);
   const double s = glm::length(axis), c = glm::dot(from, to);
   if (s < 1e-300) return c > 0.0 ? Mat3(1.0) : Mat3(1.0) * -1.0;  // opposite: no longer a rotation, mismatch is large anyway
-  const Vec3 n = axis / s;
-  const double C = 1.0 - c;
-  Mat3 r;
-  r[0][0] = c + n.x * n.x * C;
-  r[1][0] = n.x * n.y * C - n.z * s;
-  r[2][0] = n.x * n.z * C + n.y * s;
-  r[0][1] = n.y * n.x * C + n.z * s;
-  r[1][1] = c + n.y * n.y * C;
-  r[2][1] = n.y * n.z * C - n.x * s;
-  r[0][2] = n.z * n.x * C - n.y * s;
-  r[1][2] = n.z * n.y * C + n.x * s;
-  r[2][2] = c + n.z * n.z * C;
-  return r;
+  return axis_rotation(axis / s, c, s);
 }
 
 // The similarity closest to y that leaves map m exactly unchanged.
@@ -239,17 +228,19 @@ void detect_plan(QueryState& q) {
   const Lattice& lat = q.lattice;
   const Counts& c = lat.counts();
   QueryPlan& plan = q.plan;
-  const SimilarityTransform g = lat.placement().transform();
-  const SimilarityTransform g_inv = lat.placement().inverse().transform();
+  const SteadyBrick& brick = *lat.layout().steady_brick();
+  const Similarity &G = brick.placement, &U_step = brick.steps[0], &V_step = brick.steps[1], &W_step = brick.steps[2];
+  const SimilarityTransform g = G.transform();
+  const SimilarityTransform g_inv = G.inverse().transform();
   const Ball region{q.bound.center, q.bound.radius * 2.0};  // ideal points stay near the lattice
   const double tol = kConditionTolerance * q.length_scale;
-  const double growth = std::exp(std::abs(lat.step_u().log_scale()) * static_cast<double>(c.u - 1) +
-                                 std::abs(lat.step_v().log_scale()) * static_cast<double>(c.v - 1) +
-                                 std::abs(lat.step_w().log_scale()) * static_cast<double>(c.w - 1));
+  const double growth = std::exp(std::abs(U_step.log_scale()) * static_cast<double>(c.u - 1) +
+                                 std::abs(V_step.log_scale()) * static_cast<double>(c.v - 1) +
+                                 std::abs(W_step.log_scale()) * static_cast<double>(c.w - 1));
 
-  Direction U = make_direction("U", g, g_inv, lat.step_u(), c.u);
-  Direction V = make_direction("V", g, g_inv, lat.step_v(), c.v);
-  Direction W = make_direction("W", g, g_inv, lat.step_w(), c.w);
+  Direction U = make_direction("U", g, g_inv, U_step, c.u);
+  Direction V = make_direction("V", g, g_inv, V_step, c.v);
+  Direction W = make_direction("W", g, g_inv, W_step, c.w);
   plan.rows_w = W.motion;
 
   // Commutators only matter between directions that both step.

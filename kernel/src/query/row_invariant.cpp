@@ -4,11 +4,11 @@
 #include <cmath>
 
 #include "steady/query/interference.hpp"
+#include "steady/core/constants.hpp"
 
 namespace steady {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // Relative widening of the invariant comparisons: their inputs are within a few ulps of the lattice's
 // own evaluation, and the query is already inflated (kQueryInflation) for the rest.

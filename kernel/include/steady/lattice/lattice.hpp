@@ -1,8 +1,8 @@
 #pragma once
-// A steady brick lattice: balls and conical beams laid out by similarities.
+// A lattice: balls and conical beams laid out by similarities.
 //
-// Group (i, j, k), 0 <= i < u, 0 <= j < v, 0 <= k < w, is the template placed by
-//     S(i, j, k) = G o W^k o V^j o U^i        (U applied first, G last)
+// Group (i, j, k), 0 <= i < u, 0 <= j < v, 0 <= k < w, is the template placed by the similarity S(i, j, k)
+// its layout gives (layout.hpp): for the papers' steady brick, S(i, j, k) = G o W^k o V^j o U^i.
 // Ball n of group (i,j,k) is S(i,j,k) applied to template node n (its radius scales with S).
 // Beam pattern (n1, di, dj, dk, n2) joins ball n1 of group (i,j,k) to ball n2 of group (i+di, j+dj, k+dk),
 // for every (i,j,k) where both groups exist and neither ball is omitted. Without its own radii a beam is
@@ -24,6 +24,8 @@
 
 #include "steady/core/ball.hpp"
 #include "steady/core/similarity.hpp"
+#include "steady/lattice/layout.hpp"
+#include "steady/lattice/steady_brick_layout.hpp"
 
 namespace steady {
 
@@ -40,20 +42,6 @@ struct BeamPattern {
   std::optional<double> from_radius;
   std::optional<double> to_radius;
   bool has_radii() const { return from_radius.has_value(); }
-};
-
-struct Counts {
-  std::int64_t u = 1, v = 1, w = 1;
-};
-
-// How a direction's similarity is given: the step between neighbouring groups, or the cumulative
-// similarity from the first group to the last, whose 1/(count-1) power is the step (the papers'
-// interpolating control: the end groups stay where the designer put them when counts change).
-enum class StepControl { Incremental, Cumulative };
-
-struct DirectionControl {
-  Similarity similarity;
-  StepControl control = StepControl::Incremental;
 };
 
 struct NodeId {
@@ -77,11 +65,12 @@ struct BeamGeometry {
 struct LatticeDefinition {
   std::vector<TemplateNode> nodes;
   std::vector<BeamPattern> beams;
-  Counts counts;
-  DirectionControl u, v, w;
-  Similarity placement;          // G
+  LayoutPtr layout;              // where each group goes; its counts are the lattice's
   std::vector<NodeId> omitted;   // designer's omissions
 };
+
+// The start groups (i, j, k) of a pattern's beams: those whose end group (i + di, j + dj, k + dk) exists too.
+IndexBlock pattern_start_groups(const Counts& counts, const BeamPattern& pattern);
 
 class Lattice {
  public:
@@ -101,14 +90,33 @@ class Lattice {
   static Lattice from_frames(std::vector<TemplateNode> nodes, std::vector<BeamPattern> beams, Counts counts,
                              const Frame& base, const Frame& end_u, const Frame& end_v, const Frame& end_w);
 
+  // Builds the steady brick lattice with its steps applied in `order` (first applied first): with order
+  // V W U, S(i, j, k) = G o U^i o W^k o V^j (any_order_layout.hpp); indices still count along U, V, W.
+  static Lattice ordered(std::vector<TemplateNode> nodes, std::vector<BeamPattern> beams, Counts counts,
+                         const DirectionControl& U, const DirectionControl& V, const DirectionControl& W,
+                         const Similarity& G, const AxisOrder& order, std::vector<NodeId> omitted = {});
+
   const LatticeDefinition& definition() const { return def_; }
-  const Counts& counts() const { return def_.counts; }
+  const Layout& layout() const { return *def_.layout; }
+  const Counts& counts() const { return def_.layout->counts(); }
   int node_count() const { return static_cast<int>(def_.nodes.size()); }    // per group
   int pattern_count() const { return static_cast<int>(def_.beams.size()); }
-  const Similarity& step_u() const { return step_u_; }
-  const Similarity& step_v() const { return step_v_; }
-  const Similarity& step_w() const { return step_w_; }
-  const Similarity& placement() const { return def_.placement; }
+  // The same lattice with another layout (the template and omissions kept; InvalidInput when an omitted node
+  // falls outside the new counts).
+  Lattice with_layout(LayoutPtr layout) const;
+  // The same lattice moved by G as a whole (its layout's placed(G)).
+  Lattice placed(const Similarity& G) const { return with_layout(def_.layout->placed(G)); }
+
+  // --- the steady-brick view of the fast paths -------------------------------------------------------
+  // The lattice whose layout is the steady-brick view of this one in brick axes (the steps applied in the
+  // U V W order): *this when the layout is a steady brick in that order, the same groups re-indexed when
+  // its steps apply in another order, nullptr when the layout is not a steady brick. Fast paths run on it
+  // and translate the indices they report with from_brick().
+  const Lattice* brick_lattice() const;
+  NodeId to_brick(const NodeId& id) const;
+  NodeId from_brick(const NodeId& id) const;
+  BeamId to_brick(const BeamId& id) const;
+  BeamId from_brick(const BeamId& id) const;
 
   // --- evaluation, O(1) -------------------------------------------------------------------------
   bool group_exists(std::int64_t i, std::int64_t j, std::int64_t k) const;
@@ -155,7 +163,7 @@ class Lattice {
   NodeId node_from_linear(std::int64_t linear) const;
 
   LatticeDefinition def_;
-  Similarity step_u_, step_v_, step_w_;
+  std::shared_ptr<const Lattice> brick_;                   // when the layout's steps apply in another order
   std::vector<std::int64_t> omitted_linear_;               // sorted, unique
   std::vector<PatternRange> pattern_ranges_;
   std::vector<std::vector<std::int64_t>> killed_beams_;    // per pattern, sorted local indices

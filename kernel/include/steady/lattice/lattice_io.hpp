@@ -9,7 +9,9 @@
 
 namespace steady {
 
-constexpr int kLatticeFormatVersion = 1;
+// Version 2 holds the layout in its own section; version 1 files (a steady brick's U, V, W and placement at
+// the top level) still load.
+constexpr int kLatticeFormatVersion = 2;
 constexpr const char* kLatticeFormatName = "steady-lattice";
 
 std::string lattice_to_json(const Lattice& lattice, int indent = 2);

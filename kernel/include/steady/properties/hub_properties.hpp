@@ -22,6 +22,10 @@
 
 namespace steady {
 
+// A node ball may touch its beam's mid-plane (two balls in contact); beyond rounding (this fraction of the
+// half length) it may not cross it: the hub would overlap its neighbour's and the lattice is not clean.
+constexpr double kMidPlaneSlack = 1e-12;
+
 // A beam seen from one of its nodes.
 struct HubStump {
   Vec3 axis{0.0, 0.0, 1.0};  // unit, from the node toward the other node

@@ -24,17 +24,6 @@
 
 namespace steady {
 
-// A box of group indices, half-open: [i0, i1) x [j0, j1) x [k0, k1).
-struct IndexBlock {
-  std::int64_t i0 = 0, i1 = 0, j0 = 0, j1 = 0, k0 = 0, k1 = 0;
-  bool empty() const { return i1 <= i0 || j1 <= j0 || k1 <= k0; }
-  std::int64_t groups() const { return empty() ? 0 : (i1 - i0) * (j1 - j0) * (k1 - k0); }
-  IndexBlock shifted(std::int64_t di, std::int64_t dj, std::int64_t dk) const {
-    return {i0 + di, i1 + di, j0 + dj, j1 + dj, k0 + dk, k1 + dk};
-  }
-};
-
-IndexBlock intersect(const IndexBlock& a, const IndexBlock& b);
 
 struct BlockBound {
   Ball ball;           // contains the transformed template ball of every group in the block
@@ -43,7 +32,8 @@ struct BlockBound {
 
 class BlockBounds {
  public:
-  // `margin`: how far beyond the lattice's index range blocks may reach (beam ends of templates).
+  // `margin`: how far beyond the lattice's index range blocks may reach (beam ends of templates). The
+  // lattice's layout must be a steady brick in the U V W order (InvalidInput otherwise).
   explicit BlockBounds(const Lattice& lattice, std::int64_t margin = 0);
   ~BlockBounds();
   BlockBounds(BlockBounds&&) noexcept;

@@ -68,6 +68,8 @@ class HitSink {
 
 // What a lattice allows, decided when the query object is built.
 struct QueryPlan {
+  // Why no path but the naive one applies (the layout is not a steady brick), or empty.
+  std::string steady_reason;
   bool slabs_valid = false;
   bool constant_valid = false;
   std::string slabs_reason;     // why Slabs does not apply (empty when it does)
