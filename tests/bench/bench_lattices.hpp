@@ -19,52 +19,28 @@
 #include <sys/resource.h>
 #include <time.h>
 
+#include "sample_lattices.hpp"
+#include "steady/core/constants.hpp"
 #include "steady/lattice/lattice.hpp"
 
 namespace bench {
 
 using namespace steady;
-constexpr double kPi = 3.14159265358979323846;
 
-inline std::vector<BeamPattern> bcc_patterns() {
-  return {{0, 1, 0, 0, 0}, {0, 0, 1, 0, 0}, {0, 0, 0, 1, 0}, {1, 1, 0, 0, 1}, {1, 0, 1, 0, 1},
-          {1, 0, 0, 1, 1}, {0, 0, 0, 0, 1}, {1, 1, 0, 0, 0}, {1, 0, 1, 0, 0}, {1, 0, 0, 1, 0},
-          {1, 1, 1, 0, 0}, {1, 1, 0, 1, 0}, {1, 0, 1, 1, 0}, {1, 1, 1, 1, 0}};
-}
-inline std::vector<BeamPattern> cubic_patterns() { return {{0, 1, 0, 0, 0}, {0, 0, 1, 0, 0}, {0, 0, 0, 1, 0}}; }
+using test::bcc_patterns;
+using test::cubic_patterns;
 
-inline Lattice regular_fine(std::int64_t n = 75) {
-  return Lattice::incremental({{{0, 0, 0}, 0.1}, {{0.5, 0.5, 0.5}, 0.08}}, bcc_patterns(), {n, n, n},
-                              Similarity::translation({1, 0, 0}), Similarity::translation({0, 1, 0}),
-                              Similarity::translation({0, 0, 1}));
-}
-
+inline Lattice regular_fine(std::int64_t n = 75) { return test::regular_bcc({n, n, n}, 1.0, 0.1, 0.08); }
 inline Lattice cylindrical(Counts c, double inner_radius, int nodes) {
-  const double dtheta = 2 * kPi / static_cast<double>(c.v);
-  const double d = 1.0 + dtheta;
-  const double a = inner_radius * dtheta * std::pow(d, 0.5 * static_cast<double>(c.u - 1));  // mid-radius cell
-  std::vector<TemplateNode> t = {{{inner_radius, 0, 0}, 0.1 * inner_radius * dtheta}};
-  if (nodes == 2) t.push_back({{inner_radius * std::sqrt(d), 0, 0.5 * a}, 0.08 * inner_radius * dtheta});
-  // Rotate the template by half a step so that the center node sits between two radial rows.
-  return Lattice::incremental(t, nodes == 2 ? bcc_patterns() : cubic_patterns(), c,
-                              Similarity::dilation(d, {0, 0, 0}), Similarity::rotation(dtheta, {0, 0, 1}, {0, 0, 0}),
-                              Similarity::translation({0, 0, a}));
+  return test::cylindrical(c, inner_radius, nodes, true, 0.1, 0.08);
 }
 inline Lattice cylindrical_fine() { return cylindrical({32, 128, 128}, 20.0, 2); }
 inline Lattice cylindrical_coarse() { return cylindrical({5, 17, 9}, 20.0, 1); }
-
 inline Lattice bent_twisted_tapered(std::int64_t n = 100, double radius = 0.12) {
-  const double l = static_cast<double>(n - 1);
-  const Similarity U = Similarity::swirl(0.5 * kPi, {0, 1, 0}, {0, 0, 1.2 * l + 10.0}, 0.7);
-  const Similarity V = Similarity::screw(0.25 * kPi, {0, 1, 0}, {0.5 * l, 0, 0.5 * l}, l);
-  const Similarity W = Similarity::swirl(0.3 * kPi, {0, 0, 1}, {0.5 * l, 0.5 * l, -l}, 1.3);
-  return Lattice::interpolating({{{0, 0, 0}, radius}}, cubic_patterns(), {n, n, n}, U, V, W);
+  return test::bent_twisted_tapered({n, n, n}, 1.0, radius);
 }
-
 inline Lattice regular_coarse(std::int64_t n, double spacing, double radius) {
-  return Lattice::incremental({{{0, 0, 0}, radius}}, cubic_patterns(), {n, n, n},
-                              Similarity::translation({spacing, 0, 0}), Similarity::translation({0, spacing, 0}),
-                              Similarity::translation({0, 0, spacing}));
+  return test::regular_cubic({n, n, n}, spacing, radius);
 }
 
 // The axis-aligned bounding box of a lattice's balls (beams lie in the hulls of their balls).

@@ -145,7 +145,7 @@ TEST(Filters, FilteredQueriesAreMaskedQueries) {
   EXPECT_GT(nonempty, 50);
   // The gyroid definition node by node.
   lat.for_each_ball([&](std::int64_t x, const NodeId&, const Ball& b) {
-    const Vec3 p = b.center * (2 * test::kTestPi / 3.0);
+    const Vec3 p = b.center * (2 * kPi / 3.0);
     const double g = std::sin(p.x) * std::cos(p.y) + std::sin(p.y) * std::cos(p.z) + std::sin(p.z) * std::cos(p.x);
     EXPECT_EQ(balls[x] != 0, std::abs(g) <= 0.6);
   });

@@ -9,11 +9,11 @@
 #include "steady/core/errors.hpp"
 #include "test_support.hpp"
 #include "steady/properties/hub_properties.hpp"
+#include "steady/core/constants.hpp"
 
 namespace steady {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // Largest difference of two moment sets relative to the first's size (volume, R*volume, R^2*volume, area).
 double relative_difference(const MassMoments& a, const MassMoments& b, double length) {

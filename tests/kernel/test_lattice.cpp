@@ -12,13 +12,13 @@
 #include "steady/lattice/lattice.hpp"
 #include "test_support.hpp"
 #include "brick_definition.hpp"
+#include "steady/core/constants.hpp"
 
 namespace steady {
 namespace {
 
 using test::random_vec;
 
-constexpr double kPi = 3.14159265358979323846;
 
 // A bent, twisted and tapered lattice with two nodes per group and beams in every direction.
 Lattice graded_lattice(Counts counts, std::vector<NodeId> omitted = {}) {

@@ -14,11 +14,11 @@
 #include "steady/properties/lattice_properties.hpp"
 #include "steady/properties/similar_copies.hpp"
 #include "brick_definition.hpp"
+#include "steady/core/constants.hpp"
 
 namespace steady {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // Largest relative difference of the four properties (centroid relative to the lattice's size).
 double property_difference(const LatticeProperties& a, const LatticeProperties& b) {

@@ -109,7 +109,7 @@ TEST(LatticeQuery, AllPathsMatchBruteForceOnBenchmarkClasses) {
   // Rotation near 2 pi per step (principal angle -1e-4) and a near-identity swirl.
   compare_paths(Lattice::incremental({{{4, 0, 0}, 0.05}}, test::cubic_patterns(), {4, 3, 30},
                                      Similarity::translation({0.3, 0, 0}), Similarity::translation({0, 0, 0.3}),
-                                     Similarity::rotation(2 * test::kTestPi - 1e-4, {0, 0, 1}, {0, 0, 0})),
+                                     Similarity::rotation(2 * kPi - 1e-4, {0, 0, 1}, {0, 0, 0})),
                 rng, 1500, t, "near full turn");
   compare_paths(Lattice::incremental({{{4, 0, 0}, 0.05}}, test::cubic_patterns(), {4, 3, 30},
                                      Similarity::translation({0.3, 0, 0}), Similarity::translation({0, 0.3, 0}),

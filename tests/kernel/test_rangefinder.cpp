@@ -9,11 +9,11 @@
 #include "steady/query/interference.hpp"
 #include "steady/query/rangefinder.hpp"
 #include "test_support.hpp"
+#include "steady/core/constants.hpp"
 
 namespace steady {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 std::vector<std::int64_t> expand(const IndexRanges& r) {
   std::vector<std::int64_t> out;

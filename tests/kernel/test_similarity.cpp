@@ -8,6 +8,7 @@
 #include "steady/core/errors.hpp"
 #include "steady/core/similarity.hpp"
 #include "test_support.hpp"
+#include "steady/core/constants.hpp"
 
 namespace steady {
 namespace {
@@ -18,7 +19,6 @@ using test::random_unit;
 using test::random_vec;
 using test::record_error;
 
-constexpr double kPi = 3.14159265358979323846;
 
 void expect_near(const Vec3& a, const Vec3& b, double tol) {
   EXPECT_NEAR(a.x, b.x, tol);

@@ -1,6 +1,7 @@
 #pragma once
-// Lattices for the query tests: the benchmark classes at small counts (regular, sheared regular,
-// cylindrical, bent-twisted-tapered) and seeded random steady bricks of every kind of step.
+// Sample lattices shared by the kernel tests and the benchmarks: the papers' benchmark classes (regular,
+// sheared regular, cylindrical, bent-twisted-tapered) at any counts, and seeded random steady bricks of every
+// kind of step.
 #include <random>
 #include <string>
 #include <vector>
@@ -8,10 +9,10 @@
 #include "steady/lattice/lattice.hpp"
 #include "test_support.hpp"
 #include "brick_definition.hpp"
+#include "steady/core/constants.hpp"
 
 namespace steady::test {
 
-constexpr double kTestPi = 3.14159265358979323846;
 
 // Body-centred cubic template: corner node 0, center node 1, 14 patterns (3 corner edges, 3 center
 // edges, 8 corner-center diagonals): the papers' fine lattices have 2 balls and 14 edge patterns.
@@ -30,11 +31,18 @@ inline std::vector<BeamPattern> bcc_patterns(bool radii = false) {
 
 inline std::vector<BeamPattern> cubic_patterns() { return {{0, 1, 0, 0, 0}, {0, 0, 1, 0, 0}, {0, 0, 0, 1, 0}}; }
 
-inline Lattice regular_bcc(Counts counts, double spacing = 1.0) {
+// Radii in units of the spacing.
+inline Lattice regular_bcc(Counts counts, double spacing = 1.0, double corner_radius = 0.08, double center_radius = 0.06) {
   const double s = spacing;
-  return Lattice::incremental({{{0, 0, 0}, 0.08 * s}, {{0.5 * s, 0.5 * s, 0.5 * s}, 0.06 * s}}, bcc_patterns(),
-                              counts, Similarity::translation({s, 0, 0}), Similarity::translation({0, s, 0}),
-                              Similarity::translation({0, 0, s}));
+  return Lattice::incremental({{{0, 0, 0}, corner_radius * s}, {{0.5 * s, 0.5 * s, 0.5 * s}, center_radius * s}},
+                              bcc_patterns(), counts, Similarity::translation({s, 0, 0}),
+                              Similarity::translation({0, s, 0}), Similarity::translation({0, 0, s}));
+}
+
+// The cubic template (one node, three patterns) on a regular grid.
+inline Lattice regular_cubic(Counts counts, double spacing, double radius) {
+  return Lattice::incremental({{{0, 0, 0}, radius}}, cubic_patterns(), counts, Similarity::translation({spacing, 0, 0}),
+                              Similarity::translation({0, spacing, 0}), Similarity::translation({0, 0, spacing}));
 }
 
 // Non-orthogonal translations: the paper's O(1) conditions fail, the dual-direction maps do not.
@@ -43,25 +51,33 @@ inline Lattice sheared_cubic(Counts counts) {
                               Similarity::translation({0.4, 1, 0}), Similarity::translation({0.2, -0.3, 1}));
 }
 
-// Cylindrical: i radial (dilation about a point of the axis), j around the axis, k along it.
+// Cylindrical: i radial (dilation about a point of the axis), j around the axis, k along it; square cells
+// (radial step = arc step). The axial step is the arc step of the first ring, or of the middle ring when
+// `middle_cells`; radii in units of the first ring's arc step. One node (cubic patterns) or two (bcc).
+inline Lattice cylindrical(Counts counts, double inner_radius, int nodes, bool middle_cells, double corner_radius,
+                           double center_radius) {
+  const double dtheta = 2 * kPi / static_cast<double>(counts.v);
+  const double d = 1.0 + dtheta;
+  const double arc = inner_radius * dtheta;
+  const double a = middle_cells ? arc * std::pow(d, 0.5 * static_cast<double>(counts.u - 1)) : arc;
+  std::vector<TemplateNode> t = {{{inner_radius, 0, 0}, corner_radius * arc}};
+  if (nodes == 2) t.push_back({{inner_radius * std::sqrt(d), 0, 0.5 * a}, center_radius * arc});
+  return Lattice::incremental(t, nodes == 2 ? bcc_patterns() : cubic_patterns(), counts,
+                              Similarity::dilation(d, {0, 0, 0}), Similarity::rotation(dtheta, {0, 0, 1}, {0, 0, 0}),
+                              Similarity::translation({0, 0, a}));
+}
 inline Lattice cylindrical_bcc(Counts counts, double inner_radius = 10.0) {
-  const double dtheta = 2 * kTestPi / static_cast<double>(counts.v);
-  const double d = 1.0 + dtheta;  // square cells: radial step = arc step
-  const double a = inner_radius * dtheta;
-  return Lattice::incremental(
-      {{{inner_radius, 0, 0}, 0.08 * a}, {{inner_radius * std::sqrt(d), 0, 0.5 * a}, 0.06 * a}}, bcc_patterns(), counts,
-      Similarity::dilation(d, {0, 0, 0}), Similarity::rotation(dtheta, {0, 0, 1}, {0, 0, 0}),
-      Similarity::translation({0, 0, a}));
+  return cylindrical(counts, inner_radius, 2, false, 0.08, 0.06);
 }
 
 // Bent, twisted and tapered: swirl U (bend + taper), screw V (twist), swirl W, cumulative over the counts.
-inline Lattice bent_twisted_tapered(Counts counts, double spacing = 1.0) {
+inline Lattice bent_twisted_tapered(Counts counts, double spacing = 1.0, double radius = 0.12) {
   const double lu = spacing * static_cast<double>(counts.u - 1), lv = spacing * static_cast<double>(counts.v - 1),
                lw = spacing * static_cast<double>(counts.w - 1);
-  const Similarity U = Similarity::swirl(0.5 * kTestPi, {0, 1, 0}, {0, 0, 1.2 * lu + 10.0}, 0.7);
-  const Similarity V = Similarity::screw(0.25 * kTestPi, {0, 1, 0}, {0.5 * lu, 0, 0.5 * lw}, lv);
-  const Similarity W = Similarity::swirl(0.3 * kTestPi, {0, 0, 1}, {0.5 * lu, 0.5 * lv, -lw}, 1.3);
-  return Lattice::interpolating({{{0, 0, 0}, 0.12 * spacing}}, cubic_patterns(), counts, U, V, W);
+  const Similarity U = Similarity::swirl(0.5 * kPi, {0, 1, 0}, {0, 0, 1.2 * lu + 10.0}, 0.7);
+  const Similarity V = Similarity::screw(0.25 * kPi, {0, 1, 0}, {0.5 * lu, 0, 0.5 * lw}, lv);
+  const Similarity W = Similarity::swirl(0.3 * kPi, {0, 0, 1}, {0.5 * lu, 0.5 * lv, -lw}, 1.3);
+  return Lattice::interpolating({{{0, 0, 0}, radius * spacing}}, cubic_patterns(), counts, U, V, W);
 }
 
 struct RandomLatticeOptions {
