@@ -70,23 +70,18 @@ namespace {
 
 json write_any_order(const Layout& layout) {
   const auto& any = static_cast<const AnyOrderLayout&>(layout);
-  return {{"U", write_direction(any.control(0))},
-          {"V", write_direction(any.control(1))},
-          {"W", write_direction(any.control(2))},
-          {"placement", write_similarity(any.placement())},
-          {"order", to_string(any.order())}};
+  json j = write_steady_fields({any.control(0), any.control(1), any.control(2), any.placement()});
+  j["order"] = to_string(any.order());
+  return j;
 }
 
 LayoutPtr read_any_order(const json& fields, const Counts& counts, const std::string& path) {
   refuse_unknown_keys(fields, path, {"kind", "U", "V", "W", "placement", "order"});
-  const std::string at = path.empty() ? "" : path + ".";
+  const std::string at = path.empty() ? "order" : path + ".order";
   const json& order = member(fields, "order", path);
-  if (!order.is_string()) fail_input(at + "order", "expected a string such as \"VWU\"");
-  const Similarity placement =
-      fields.contains("placement") ? read_similarity(fields["placement"], at + "placement", false) : Similarity::identity();
-  return AnyOrderLayout::make(counts, read_direction(fields, "U", path), read_direction(fields, "V", path),
-                              read_direction(fields, "W", path), placement,
-                              axis_order_from_string(order.get<std::string>(), at + "order"));
+  if (!order.is_string()) fail_input(at, "expected a string such as \"VWU\"");
+  const SteadyFields f = read_steady_fields(fields, path);
+  return AnyOrderLayout::make(counts, f.u, f.v, f.w, f.placement, axis_order_from_string(order.get<std::string>(), at));
 }
 
 }  // namespace

@@ -157,4 +157,15 @@ json write_direction(const DirectionControl& d) {
   return j;
 }
 
+SteadyFields read_steady_fields(const json& obj, const std::string& path) {
+  const std::string placement_path = path.empty() ? "placement" : path + ".placement";
+  return {read_direction(obj, "U", path), read_direction(obj, "V", path), read_direction(obj, "W", path),
+          obj.contains("placement") ? read_similarity(obj["placement"], placement_path, false) : Similarity::identity()};
+}
+
+json write_steady_fields(const SteadyFields& f) {
+  return {{"U", write_direction(f.u)}, {"V", write_direction(f.v)}, {"W", write_direction(f.w)},
+          {"placement", write_similarity(f.placement)}};
+}
+
 }  // namespace steady::detail

@@ -31,6 +31,15 @@ Similarity read_similarity(const json& value, const std::string& path, bool allo
 // A direction (similarity and control) at obj[key].
 DirectionControl read_direction(const json& obj, const char* key, const std::string& path);
 
+// The fields a steady brick is written with, in every layout built on one: "U", "V", "W" (directions with
+// their control) and "placement" (optional when read).
+struct SteadyFields {
+  DirectionControl u, v, w;
+  Similarity placement;
+};
+SteadyFields read_steady_fields(const json& obj, const std::string& path);
+json write_steady_fields(const SteadyFields& fields);
+
 json write_vec3(const Vec3& v);
 // By its generator (exact), with a description for people.
 json write_similarity(const Similarity& s);

@@ -149,10 +149,8 @@ Lattice lattice_from_json(const std::string& text) {
   d.beams = read_beams(j);
   const Counts counts = read_counts(j);
   if (version == 1) {
-    const Similarity placement =
-        j.contains("placement") ? read_similarity(j["placement"], "placement", false) : Similarity::identity();
-    d.layout = SteadyBrickLayout::make(counts, read_direction(j, "U", ""), read_direction(j, "V", ""),
-                                       read_direction(j, "W", ""), placement);
+    const SteadyFields f = read_steady_fields(j, "");
+    d.layout = SteadyBrickLayout::make(counts, f.u, f.v, f.w, f.placement);
   } else {
     d.layout = read_layout(j, counts);
   }

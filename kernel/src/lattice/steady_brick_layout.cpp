@@ -101,20 +101,13 @@ namespace {
 
 json write_steady_brick(const Layout& layout) {
   const auto& brick = static_cast<const SteadyBrickLayout&>(layout);
-  return {{"U", write_direction(brick.control(0))},
-          {"V", write_direction(brick.control(1))},
-          {"W", write_direction(brick.control(2))},
-          {"placement", write_similarity(brick.placement())}};
+  return write_steady_fields({brick.control(0), brick.control(1), brick.control(2), brick.placement()});
 }
 
 LayoutPtr read_steady_brick(const json& fields, const Counts& counts, const std::string& path) {
   refuse_unknown_keys(fields, path, {"kind", "U", "V", "W", "placement"});
-  const std::string placement_path = path.empty() ? "placement" : path + ".placement";
-  const Similarity placement = fields.contains("placement")
-                                   ? read_similarity(fields["placement"], placement_path, false)
-                                   : Similarity::identity();
-  return SteadyBrickLayout::make(counts, read_direction(fields, "U", path), read_direction(fields, "V", path),
-                                 read_direction(fields, "W", path), placement);
+  const SteadyFields f = read_steady_fields(fields, path);
+  return SteadyBrickLayout::make(counts, f.u, f.v, f.w, f.placement);
 }
 
 }  // namespace
