@@ -1,5 +1,6 @@
 #include "steady/lattice/lattice.hpp"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -341,30 +342,32 @@ std::uint64_t Lattice::listing_bytes() const {
 void Lattice::balls(double* centers, double* radii) const {
   const Counts& c = counts();
   const int nn = node_count();
-  // One task per (j, k) row of groups; the row's first ball index comes from the rank of its first node.
-  tbb::parallel_for(std::int64_t(0), c.v * c.w, [&](std::int64_t row) {
-    const std::int64_t j = row % c.v, k = row / c.v;
+  // Tasks of (j, k) rows of groups, each with one buffer for its rows' group transforms; a row's first ball
+  // index comes from the rank of its first node.
+  auto list_rows = [&](const tbb::blocked_range<std::int64_t>& rows) {
     std::vector<SimilarityTransform> groups(static_cast<std::size_t>(c.u));
-    def_.layout->row_transforms(j, k, groups.data());
-    std::int64_t linear = node_linear(NodeId{0, j, k, 0});
-    auto skip = std::lower_bound(omitted_linear_.begin(), omitted_linear_.end(), linear);
-    std::int64_t index = linear - (skip - omitted_linear_.begin());
-    for (std::int64_t i = 0; i < c.u; ++i) {
-      const SimilarityTransform& s = groups[static_cast<std::size_t>(i)];
-      for (int n = 0; n < nn; ++n, ++linear) {
-        if (skip != omitted_linear_.end() && *skip == linear) {
-          ++skip;
-          continue;
+    for (std::int64_t row = rows.begin(); row != rows.end(); ++row) {
+      const std::int64_t j = row % c.v, k = row / c.v;
+      def_.layout->row_transforms(j, k, groups.data());
+      std::int64_t linear = node_linear(NodeId{0, j, k, 0});
+      auto skip = std::lower_bound(omitted_linear_.begin(), omitted_linear_.end(), linear);
+      std::int64_t index = linear - (skip - omitted_linear_.begin());
+      for (const SimilarityTransform& s : groups)
+        for (int n = 0; n < nn; ++n, ++linear) {
+          if (skip != omitted_linear_.end() && *skip == linear) {
+            ++skip;
+            continue;
+          }
+          const Vec3 p = s.apply_point(def_.nodes[n].center);
+          centers[3 * index + 0] = p.x;
+          centers[3 * index + 1] = p.y;
+          centers[3 * index + 2] = p.z;
+          radii[index] = s.scale * def_.nodes[n].radius;
+          ++index;
         }
-        const Vec3 p = s.apply_point(def_.nodes[n].center);
-        centers[3 * index + 0] = p.x;
-        centers[3 * index + 1] = p.y;
-        centers[3 * index + 2] = p.z;
-        radii[index] = s.scale * def_.nodes[n].radius;
-        ++index;
-      }
     }
-  });
+  };
+  tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, c.v * c.w), list_rows);
 }
 
 void Lattice::beams(std::int64_t* start, std::int64_t* end, double* start_radius, double* end_radius) const {
@@ -375,29 +378,32 @@ void Lattice::beams(std::int64_t* start, std::int64_t* end, double* start_radius
     const auto& killed = killed_beams_[p];
     const std::int64_t nj = r.j1 - r.j0, nk = r.k1 - r.k0;
     const double node_from = def_.nodes[b.from].radius, node_to = def_.nodes[b.to].radius;
-    tbb::parallel_for(std::int64_t(0), nj * nk, [&](std::int64_t row) {
-      const std::int64_t j = r.j0 + row % nj, k = r.k0 + row / nj;
-      // The group scales of the row and of the row its beams end in (the radii as beam() gives them).
+    auto list_rows = [&](const tbb::blocked_range<std::int64_t>& rows) {
+      // The group transforms of a row and of the row its beams end in (the radii as beam() gives them).
       std::vector<SimilarityTransform> here(static_cast<std::size_t>(c.u)), there(static_cast<std::size_t>(c.u));
-      def_.layout->row_transforms(j, k, here.data());
-      def_.layout->row_transforms(j + b.dj, k + b.dk, there.data());
-      std::int64_t local = r.local(r.i0, j, k);
-      auto skip = std::lower_bound(killed.begin(), killed.end(), local);
-      std::int64_t index = pattern_offsets_[p] + local - (skip - killed.begin());
-      for (std::int64_t i = r.i0; i < r.i1; ++i, ++local) {
-        if (skip != killed.end() && *skip == local) {
-          ++skip;
-          continue;
+      for (std::int64_t row = rows.begin(); row != rows.end(); ++row) {
+        const std::int64_t j = r.j0 + row % nj, k = r.k0 + row / nj;
+        def_.layout->row_transforms(j, k, here.data());
+        def_.layout->row_transforms(j + b.dj, k + b.dk, there.data());
+        std::int64_t local = r.local(r.i0, j, k);
+        auto skip = std::lower_bound(killed.begin(), killed.end(), local);
+        std::int64_t index = pattern_offsets_[p] + local - (skip - killed.begin());
+        for (std::int64_t i = r.i0; i < r.i1; ++i, ++local) {
+          if (skip != killed.end() && *skip == local) {
+            ++skip;
+            continue;
+          }
+          start[index] = ball_index(NodeId{i, j, k, b.from});
+          end[index] = ball_index(NodeId{i + b.di, j + b.dj, k + b.dk, b.to});
+          const double ball_from = here[static_cast<std::size_t>(i)].scale * node_from;
+          const double ball_to = there[static_cast<std::size_t>(i + b.di)].scale * node_to;
+          start_radius[index] = b.has_radii() ? *b.from_radius * ball_from / node_from : ball_from;
+          end_radius[index] = b.has_radii() ? *b.to_radius * ball_to / node_to : ball_to;
+          ++index;
         }
-        start[index] = ball_index(NodeId{i, j, k, b.from});
-        end[index] = ball_index(NodeId{i + b.di, j + b.dj, k + b.dk, b.to});
-        const double ball_from = here[static_cast<std::size_t>(i)].scale * node_from;
-        const double ball_to = there[static_cast<std::size_t>(i + b.di)].scale * node_to;
-        start_radius[index] = b.has_radii() ? *b.from_radius * ball_from / node_from : ball_from;
-        end_radius[index] = b.has_radii() ? *b.to_radius * ball_to / node_to : ball_to;
-        ++index;
       }
-    });
+    };
+    tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, nj * nk), list_rows);
   }
 }
 

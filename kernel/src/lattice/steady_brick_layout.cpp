@@ -69,6 +69,11 @@ SimilarityTransform SteadyBrickLayout::group_transform(std::int64_t i, std::int6
 void SteadyBrickLayout::row_transforms(std::int64_t j, std::int64_t k, SimilarityTransform* out) const {
   if (!contains(0, j, k)) fail_group_outside(counts(), 0, j, k);
   const SimilarityTransform prefix = SteadyBrick::row_prefix(brick_.placement.transform(), power(2, k), power(1, j));
+  const auto& u_powers = powers_[0];
+  if (static_cast<std::int64_t>(u_powers.size()) == counts().u) {  // the common case, without copying powers
+    for (std::size_t i = 0; i < u_powers.size(); ++i) out[i] = SteadyBrick::place(prefix, u_powers[i]);
+    return;
+  }
   for (std::int64_t i = 0; i < counts().u; ++i) out[i] = SteadyBrick::place(prefix, power(0, i));
 }
 
