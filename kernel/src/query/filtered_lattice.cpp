@@ -141,16 +141,24 @@ struct FilterSink : HitSink {
     }
     return inner.on_hit(h);
   }
+  double reach() const override { return inner.reach(); }
 };
 }  // namespace
 
-void FilteredLattice::visit(const Ball& query, HitSink& sink) const {
+void FilteredLattice::visit(const Ball& query, HitSink& sink) const { visit_with(query, sink, method_); }
+
+void FilteredLattice::visit_nearest(const Ball& query, HitSink& sink) const {
+  const bool blocks = method_ != QueryMethod::Naive && query_->plan().steady_reason.empty();
+  visit_with(query, sink, blocks ? QueryMethod::Blocks : method_);
+}
+
+void FilteredLattice::visit_with(const Ball& query, HitSink& sink, QueryMethod method) const {
   if (!filter_) {
-    query_->visit(query, sink, method_);
+    query_->visit(query, sink, method);
     return;
   }
   FilterSink f(*this, sink);
-  query_->visit(query, f, method_);
+  query_->visit(query, f, method);
 }
 
 BallQueryResult FilteredLattice::query_ball(const Ball& query) const {

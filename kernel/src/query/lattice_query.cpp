@@ -200,6 +200,7 @@ struct FromBrickSink : HitSink {
     }
     return inner.on_hit(h);
   }
+  double reach() const override { return inner.reach(); }
 };
 }  // namespace
 

@@ -40,6 +40,7 @@ struct NearestSink : HitSink {
     best = std::min(best, std::max(0.0, h.distance));
     return best > 0.0;  // inside an element: nothing can be nearer
   }
+  double reach() const override { return best; }
 };
 
 struct RaySink : HitSink {
@@ -98,6 +99,13 @@ double first_hit(const InterferenceSource& src, const Vec3& origin, const Vec3& 
 LatticeSource::LatticeSource(const LatticeQuery& query, QueryMethod method)
     : query_(query), method_(query.resolve(method)), scale_(typical_element_size(query.lattice())) {}
 
+void LatticeSource::visit_nearest(const Ball& query, HitSink& sink) const {
+  // The hierarchical path visits nearer blocks first and prunes by the sink's reach; the naive path (an
+  // explicit choice, or a layout without a steady brick) scans everything anyway.
+  const bool blocks = method_ != QueryMethod::Naive && query_.plan().steady_reason.empty();
+  query_.visit(query, sink, blocks ? QueryMethod::Blocks : method_);
+}
+
 double typical_element_size(const Lattice& lattice) {
   double r = 0.0;
   for (const auto& n : lattice.definition().nodes) r += n.radius;
@@ -119,23 +127,24 @@ void distance(const InterferenceSource& source, const double* points, std::size_
   validate_points(points, n, "points");
   if (std::isnan(bound) || bound < 0.0) fail_input("bound", "must be >= 0 (got " + std::to_string(bound) + ")");
   const double first = kDistanceFirstScale * source.element_scale();
+  const Ball lattice_bound = source.bound();
   tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
     const Vec3 p = point_at(points, i, "points");
-    double r = std::min(bound, first);
-    for (;;) {
-      NearestSink sink;
-      source.visit(Ball{p, r}, sink);
-      // Every element nearer than r was visited: the least distance found is the distance.
-      if (sink.best <= r) {
-        out[i] = sink.best;
-        return;
-      }
-      if (r >= bound) {
-        out[i] = kInf;
-        return;
-      }
-      r = std::min(bound, 4.0 * r);
+    // Every element lies within `far` of p: no search goes beyond it (nor beyond the caller's bound).
+    const double far = glm::length(p - lattice_bound.center) + lattice_bound.radius;
+    const double limit = std::min(bound, far);
+    // Near the lattice one small query answers.
+    const double r = std::min(limit, first);
+    NearestSink near;
+    source.visit(Ball{p, r}, near);
+    if (near.best <= r) {  // every element nearer than r was visited: the least distance found is the distance
+      out[i] = near.best;
+      return;
     }
+    // Farther: one search to the limit, nearer blocks first, pruned by the best distance so far.
+    NearestSink nearest;
+    if (r < limit) source.visit_nearest(Ball{p, limit}, nearest);
+    out[i] = nearest.best <= limit ? nearest.best : kInf;
   });
 }
 

@@ -38,10 +38,11 @@ void visit_blocks(const QueryState& q, Probe& probe) {
   const int nodes = lat.node_count();
   const int kinds = nodes + static_cast<int>(patterns.size());
   const bool masked = kinds <= kMaskKinds;
-  const Ball& query = probe.inflated;
+  const Vec3& center = probe.inflated.center;
   const Ball& templ = q.bounds->template_bound();
   const IndexBlock lattice_block{0, c.u, 0, c.v, 0, c.w};
-  auto gap_to = [&](const Ball& b) { return distance_to_ball(query.center, b) - query.radius; };
+  // The query's radius shrinks to the sink's reach as a nearest-element search finds nearer elements.
+  auto gap_to = [&](const Ball& b) { return distance_to_ball(center, b) - probe.pruning_radius(); };
 
   // Per-kind tight test: which kinds may meet the query within block b.
   auto kind_mask = [&](const IndexBlock& b) {
@@ -58,7 +59,7 @@ void visit_blocks(const QueryState& q, Probe& probe) {
       const Ball& te = q.beam_end_templates[static_cast<std::size_t>(p)];
       const Ball bs = q.bounds->bound(ts.center, ts.radius, s).ball;
       const Ball be = q.bounds->bound(te.center, te.radius, s.shifted(bp.di, bp.dj, bp.dk)).ball;
-      if (distance_to_hull(query.center, bs, be) <= query.radius) mask |= std::uint64_t(1) << (nodes + p);
+      if (distance_to_hull(center, bs, be) <= probe.pruning_radius()) mask |= std::uint64_t(1) << (nodes + p);
     }
     return mask;
   };
@@ -71,7 +72,8 @@ void visit_blocks(const QueryState& q, Probe& probe) {
         lattice_block);
     const BlockBound whole = q.bounds->bound(templ.center, templ.radius, ext);
     e.block = b;
-    e.gap = gap_to(whole.ball);
+    e.distance = distance_to_ball(center, whole.ball);
+    e.gap = e.distance - probe.pruning_radius();
     for (int a = 0; a < 3; ++a) e.spread[a] = whole.spread[a];
     e.kinds = parent_kinds;
     if (e.gap > 0.0) return false;
@@ -106,7 +108,7 @@ void visit_blocks(const QueryState& q, Probe& probe) {
         const Ball& te = q.beam_end_templates[static_cast<std::size_t>(p)];
         const Ball bs = q.bounds->bound(ts.center, ts.radius, s).ball;
         const Ball be = q.bounds->bound(te.center, te.radius, s.shifted(bp.di, bp.dj, bp.dk)).ball;
-        if (distance_to_hull(query.center, bs, be) > query.radius) continue;
+        if (distance_to_hull(center, bs, be) > probe.pruning_radius()) continue;
       }
       for (std::int64_t k = s.k0; k < s.k1; ++k)
         for (std::int64_t j = s.j0; j < s.j1; ++j)
@@ -126,6 +128,7 @@ void visit_blocks(const QueryState& q, Probe& probe) {
     const Entry e = stack.back();
     stack.pop_back();
     const IndexBlock& b = e.block;
+    if (e.distance > probe.pruning_radius()) continue;  // the sink's reach shrank since it was pushed
     if (b.groups() <= kLeafGroups) {
       if (!leaf(b, e.kinds)) return;
       continue;

@@ -97,6 +97,7 @@ struct BlockEntry {
   IndexBlock block;
   double spread[3];
   double gap;           // distance from the query to the block's union ball (visit order)
+  double distance;      // from the query's center to that ball (pruning when the sink's reach shrinks)
   std::uint64_t kinds;  // kinds that may meet the query (all ones when not narrowed)
 };
 struct Scratch {
@@ -128,6 +129,11 @@ struct Probe {
   HitSink& sink;
   bool stopped = false;
   std::int64_t candidates = 0;
+
+  // The inflated radius, reduced to the sink's reach (plus the same inflation) when that is smaller.
+  double pruning_radius() const {
+    return std::min(inflated.radius, sink.reach() + (inflated.radius - query.radius));
+  }
 
   // Each returns false once the sink has asked to stop.
   bool ball_geometry(const Ball& geometry, std::int64_t i, std::int64_t j, std::int64_t k, int n) {

@@ -43,12 +43,15 @@ class FilteredLattice : public InterferenceSource {
 
   // InterferenceSource: the unfiltered query's hits whose nodes are kept.
   void visit(const Ball& query, HitSink& sink) const override;
+  void visit_nearest(const Ball& query, HitSink& sink) const override;
   Ball bound() const override { return query_->bound(); }
   double element_scale() const override { return scale_; }
   BallQueryResult query_ball(const Ball& query) const;
   bool touches(const Ball& query) const;
 
  private:
+  void visit_with(const Ball& query, HitSink& sink, QueryMethod method) const;
+
   std::unique_ptr<Lattice> lattice_;
   std::unique_ptr<LatticeQuery> query_;
   FilterPtr filter_;

@@ -31,6 +31,7 @@
 // Every path tests candidates with the same exact predicates (interference.hpp) on the same element
 // geometry as Lattice::ball/beam, so their answers are identical sets.
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -64,6 +65,9 @@ class HitSink {
  public:
   virtual ~HitSink() = default;
   virtual bool on_hit(const ElementHit& hit) = 0;
+  // The distance from the query's center beyond which hits are no longer wanted: a nearest-element search
+  // lowers it as it finds nearer elements, and the hierarchical path prunes blocks by it.
+  virtual double reach() const { return std::numeric_limits<double>::infinity(); }
 };
 
 // What a lattice allows, decided when the query object is built.

@@ -20,6 +20,9 @@ class InterferenceSource {
  public:
   virtual ~InterferenceSource() = default;
   virtual void visit(const Ball& query, HitSink& sink) const = 0;
+  // The same for a search that lowers the sink's reach as it goes (distances): a path that visits nearer
+  // parts first and prunes by the reach.
+  virtual void visit_nearest(const Ball& query, HitSink& sink) const { visit(query, sink); }
   virtual Ball bound() const = 0;
   // A length of the order of the elements' size (first step of rays and distances).
   virtual double element_scale() const = 0;
@@ -29,6 +32,7 @@ class LatticeSource : public InterferenceSource {
  public:
   explicit LatticeSource(const LatticeQuery& query, QueryMethod method = QueryMethod::Auto);
   void visit(const Ball& query, HitSink& sink) const override { query_.visit(query, sink, method_); }
+  void visit_nearest(const Ball& query, HitSink& sink) const override;
   Ball bound() const override { return query_.bound(); }
   double element_scale() const override { return scale_; }
 
