@@ -9,6 +9,7 @@
 #include <BRepTools.hxx>
 #include <gp_Pln.hxx>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <sstream>
@@ -189,6 +190,34 @@ TEST(Filters, InsideBodyCallableAndBrep) {
     EXPECT_EQ(both[x], a[x] && !in_box[x]);
     EXPECT_EQ(either[x], a[x] || in_box[x]);
   }
+}
+
+// A filter extended one operator at a time in a loop (f = f & g) used to nest once per step and overflow the
+// stack when evaluated or described past ~30,000 steps (issue 16, repro 15). Chains of one operator do not
+// nest; genuine nesting is refused past kMaxFilterNesting with a message saying what to do instead.
+TEST(Filters, LongChainsEvaluateAndDeepNestingIsRefused) {
+  const Lattice lat = test::regular_bcc({6, 6, 6});
+  const FilterPtr g = gyroid(3.0, 0.4);
+  const FilterPtr keep_all = index_stencil({1}, 1, 1, 1);
+  FilterPtr chain = g;
+  for (int q = 0; q < 100000; ++q) chain = all_of({chain, keep_all});
+  EXPECT_EQ(chain->nesting(), 2);
+  std::vector<std::uint8_t> a(static_cast<std::size_t>(lat.ball_count())), b(a.size());
+  FilteredLattice(lat, chain).ball_mask(a.data());
+  FilteredLattice(lat, g).ball_mask(b.data());
+  EXPECT_EQ(a, b);
+  EXPECT_GT(std::count(a.begin(), a.end(), 1), 0);
+  EXPECT_EQ(chain->describe().rfind("(gyroid", 0), 0u);
+  chain.reset();  // destroyed by iteration, not recursion
+  FilterPtr nested = g;
+  std::string refusal;
+  try {
+    for (int q = 0; q < 2000; ++q) nested = q % 2 ? any_of({all_of({nested, keep_all}), keep_all}) : negate(nested);
+  } catch (const InvalidInput& e) {
+    refusal = e.what();
+  }
+  EXPECT_NE(refusal.find("levels deep (at most 1000)"), std::string::npos) << refusal;
+  EXPECT_LE(nested->nesting(), kMaxFilterNesting);
 }
 
 TEST(Filters, BadBodies) {

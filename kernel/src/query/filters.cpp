@@ -50,6 +50,7 @@ class LatticeInLattice : public NodeFilter {
     return "lattice in lattice (" + std::to_string(coarse_->lattice().ball_count()) + "-ball coarse lattice" +
            (coarse_->filter() ? ", itself filtered by " + coarse_->filter()->describe() : std::string()) + ")";
   }
+  int nesting() const override { return 1 + (coarse_->filter() ? coarse_->filter()->nesting() : 0); }
 
  private:
   std::shared_ptr<const FilteredLattice> coarse_;
@@ -101,10 +102,27 @@ class InsideCallable : public NodeFilter {
   std::string name_;
 };
 
+// And / or / not of filters. A chain a & b & c ... built one operator at a time (as `f = f & g` in a loop
+// does) is kept as a list that shares the earlier links, so it costs O(1) to extend and is evaluated,
+// described and destroyed by iteration, whatever its length; only genuine nesting (an `or` inside an
+// `and` inside ...) recurses, and it is bounded by kMaxFilterNesting.
 class Combined : public NodeFilter {
  public:
   enum class Op { All, Any, Not };
-  Combined(Op op, std::vector<FilterPtr> parts) : op_(op), parts_(std::move(parts)) {}
+  Combined(Op op, std::shared_ptr<const Combined> earlier, std::vector<FilterPtr> parts)
+      : op_(op), earlier_(std::move(earlier)), parts_(std::move(parts)) {
+    nesting_ = earlier_ ? earlier_->nesting_ : 1;
+    for (const FilterPtr& f : parts_) nesting_ = std::max(nesting_, 1 + f->nesting());
+    parallel_safe_ = !earlier_ || earlier_->parallel_safe_;
+    for (const FilterPtr& f : parts_) parallel_safe_ = parallel_safe_ && f->parallel_safe();
+  }
+  ~Combined() override {
+    // Unlink the chain iteratively: the recursive destruction of a long chain would overflow the stack.
+    std::shared_ptr<const Combined> next = std::move(earlier_);
+    while (next && next.use_count() == 1) next = std::move(const_cast<Combined&>(*next).earlier_);
+  }
+  Op op() const { return op_; }
+
   void evaluate(const Lattice& lat, const NodeId* ids, const Ball* balls, std::size_t n, std::uint8_t* keep) const override {
     if (op_ == Op::Not) {
       parts_[0]->evaluate(lat, ids, balls, n, keep);
@@ -113,27 +131,49 @@ class Combined : public NodeFilter {
     }
     std::vector<std::uint8_t> part(n);
     for (std::size_t q = 0; q < n; ++q) keep[q] = op_ == Op::All ? 1 : 0;
-    for (const FilterPtr& f : parts_) {
-      f->evaluate(lat, ids, balls, n, part.data());
-      for (std::size_t q = 0; q < n; ++q) keep[q] = op_ == Op::All ? (keep[q] && part[q]) : (keep[q] || part[q]);
-    }
+    for (const Combined* link = this; link; link = link->earlier_.get())
+      for (const FilterPtr& f : link->parts_) {
+        f->evaluate(lat, ids, balls, n, part.data());
+        for (std::size_t q = 0; q < n; ++q) keep[q] = op_ == Op::All ? (keep[q] && part[q]) : (keep[q] || part[q]);
+      }
   }
-  bool parallel_safe() const override {
-    for (const FilterPtr& f : parts_)
-      if (!f->parallel_safe()) return false;
-    return true;
-  }
+  bool parallel_safe() const override { return parallel_safe_; }
+  int nesting() const override { return nesting_; }
   std::string describe() const override {
     if (op_ == Op::Not) return "not (" + parts_[0]->describe() + ")";
+    std::vector<const Combined*> links;  // earliest first
+    for (const Combined* link = this; link; link = link->earlier_.get()) links.push_back(link);
     std::string s;
-    for (const FilterPtr& f : parts_) s += (s.empty() ? "(" : op_ == Op::All ? " and (" : " or (") + f->describe() + ")";
+    for (auto it = links.rbegin(); it != links.rend(); ++it)
+      for (const FilterPtr& f : (*it)->parts_)
+        s += (s.empty() ? "(" : op_ == Op::All ? " and (" : " or (") + f->describe() + ")";
     return s;
   }
 
  private:
   Op op_;
+  std::shared_ptr<const Combined> earlier_;  // the chain's earlier parts (same op), or null
   std::vector<FilterPtr> parts_;
+  int nesting_ = 1;
+  bool parallel_safe_ = true;
 };
+
+// `and` / `or` of a list: a list starting with a combination of the same op extends that chain.
+FilterPtr combine(Combined::Op op, std::vector<FilterPtr> filters) {
+  std::shared_ptr<const Combined> earlier;
+  if (filters.size() > 1)
+    if (auto first = std::dynamic_pointer_cast<const Combined>(filters.front()); first && first->op() == op) {
+      earlier = first;
+      filters.erase(filters.begin());
+    }
+  // Not const-qualified as made: the destructor may move a sole owner's link (see ~Combined).
+  std::shared_ptr<const Combined> combined = std::make_shared<Combined>(op, std::move(earlier), std::move(filters));
+  if (combined->nesting() > kMaxFilterNesting)
+    fail_input("filters", "nested " + std::to_string(combined->nesting()) + " levels deep (at most " +
+                              std::to_string(kMaxFilterNesting) +
+                              "): combine many filters in one list (all_of / any_of) instead of nesting them");
+  return combined;
+}
 
 void require_filters(const std::vector<FilterPtr>& f, const char* field) {
   if (f.empty()) fail_input(field, "needs at least one filter");
@@ -155,7 +195,11 @@ FilterPtr index_stencil(std::vector<std::uint8_t> cells, std::int64_t sx, std::i
 FilterPtr lattice_in_lattice(std::shared_ptr<const FilteredLattice> coarse) {
   if (!coarse) fail_input("coarse", "is not a lattice");
   if (coarse->lattice().ball_count() == 0) fail_input("coarse", "the coarse lattice is empty");
-  return std::make_shared<LatticeInLattice>(std::move(coarse));
+  auto lil = std::make_shared<LatticeInLattice>(std::move(coarse));
+  if (lil->nesting() > kMaxFilterNesting)
+    fail_input("coarse", "its filters nest " + std::to_string(lil->nesting()) + " levels deep (at most " +
+                             std::to_string(kMaxFilterNesting) + ")");
+  return lil;
 }
 
 FilterPtr gyroid(double period, double thickness, const Vec3& origin, GyroidMode mode) {
@@ -172,18 +216,18 @@ FilterPtr inside(PointClassifier classify, bool parallel_safe, std::string name)
 
 FilterPtr all_of(std::vector<FilterPtr> filters) {
   require_filters(filters, "filters");
-  return std::make_shared<Combined>(Combined::Op::All, std::move(filters));
+  return combine(Combined::Op::All, std::move(filters));
 }
 
 FilterPtr any_of(std::vector<FilterPtr> filters) {
   require_filters(filters, "filters");
-  return std::make_shared<Combined>(Combined::Op::Any, std::move(filters));
+  return combine(Combined::Op::Any, std::move(filters));
 }
 
 FilterPtr negate(FilterPtr filter) {
   std::vector<FilterPtr> f{std::move(filter)};
   require_filters(f, "filter");
-  return std::make_shared<Combined>(Combined::Op::Not, std::move(f));
+  return combine(Combined::Op::Not, std::move(f));
 }
 
 }  // namespace steady

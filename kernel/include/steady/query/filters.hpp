@@ -35,7 +35,13 @@ class NodeFilter {
                         std::uint8_t* keep) const = 0;
   virtual bool parallel_safe() const { return true; }
   virtual std::string describe() const = 0;
+  // How deeply filters nest inside this one (1 for a filter of its own): evaluation recurses this deep.
+  virtual int nesting() const { return 1; }
 };
+
+// Combinations nest at most this deep (each level is a stack frame when evaluated); chains of one operator
+// (a & b & c ...) do not nest, however long.
+constexpr int kMaxFilterNesting = 1000;
 using FilterPtr = std::shared_ptr<const NodeFilter>;
 
 // cells: sx * sy * sz values in C order [x][y][z] (or sx * sy * sz * nodes, [x][y][z][n], when
