@@ -1,5 +1,9 @@
 // The Python module `steadylattice`: the steady kernel for scripts, tests and the FreeCAD workbench.
+#include <Standard_Failure.hxx>
+#include <Standard_OutOfMemory.hxx>
 #include <pybind11/pybind11.h>
+
+#include <string>
 
 #include "steady/core/errors.hpp"
 #include "steady/lattice/lattice_io.hpp"
@@ -27,6 +31,11 @@ PYBIND11_MODULE(steadylattice, m) {
       PyErr_SetString(PyExc_MemoryError, e.what());
     } catch (const steady::Cancelled& e) {
       PyErr_SetString(cancelled.ptr(), e.what());
+    } catch (const Standard_OutOfMemory& e) {  // OpenCASCADE's allocator under a memory limit
+      PyErr_SetString(PyExc_MemoryError, (std::string("OpenCASCADE ran out of memory: ") + e.GetMessageString()).c_str());
+    } catch (const Standard_Failure& e) {  // not a std::exception: pybind11 would only say "unknown exception"
+      PyErr_SetString(PyExc_RuntimeError, (std::string("OpenCASCADE: ") + e.DynamicType()->Name() + ": " +
+                                           e.GetMessageString()).c_str());
     }
   });
   m.attr("FORMAT_VERSION") = steady::kLatticeFormatVersion;

@@ -278,8 +278,30 @@ TEST(Lattice, BadInputNamesTheField) {
   test::BrickDefinition d;
   d.nodes = nodes;
   d.counts = {2, 2, 2};
+  d.u = {Similarity::translation({1, 0, 0})};
+  d.v = {Similarity::translation({0, 1, 0})};
+  d.w = {Similarity::translation({0, 0, 1})};
   d.omitted = {{2, 0, 0, 0}};
   EXPECT_NE(error_of([&] { Lattice{d}; }).find("omitted[0]"), std::string::npos);
+  // A step that is the identity map (also a whole turn) would put every group of its direction in one place
+  // (issue 16, repro 06: the B-rep of such a lattice came out empty).
+  d.omitted.clear();
+  d.v = {Similarity::identity()};
+  EXPECT_NE(error_of([&] { Lattice{d}; }).find("V: the step is the identity: the 2 groups along V"), std::string::npos);
+  d.v = {Similarity::rotation(2 * kPi, {0, 0, 1}, {3, 0, 0})};
+  EXPECT_NE(error_of([&] { Lattice{d}; }).find("V: the step is the identity"), std::string::npos);
+  d.counts.v = 1;
+  EXPECT_NO_THROW(Lattice{d});  // one group along V: nothing coincides
+  // Similarities beyond the supported range are refused when made, naming the field (repro 05, 09).
+  EXPECT_NE(error_of([] { Similarity::rotation(1e300, {0, 0, 1}, {0, 0, 0}); }).find("rotation.angle: is 1e+300, beyond"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { Similarity::from_generator(1000, Vec3(0.0), Vec3(0.0)); }).find("log_scale"), std::string::npos);
+  EXPECT_NE(error_of([] { Similarity::dilation(1e200, {0, 0, 0}).power(2); }).find("log_scale"), std::string::npos);
+  EXPECT_NE(error_of([] { Similarity::translation({1e308, 0, 0}); }).find("translation.vector"), std::string::npos);
+  EXPECT_LT(Similarity::rotation(0.3, {1e308, 1e308, 1e308}, {0, 0, 0}).map_distance(
+                Similarity::rotation(0.3, {1, 1, 1}, {0, 0, 0})),
+            1e-15);  // a huge axis is still an axis
+  EXPECT_NE(error_of(make({{{1e200, 0, 0}, 0.2}}, {}, {2, 1, 1})).find("nodes[0].center: is 1e+200"), std::string::npos);
 }
 
 }  // namespace

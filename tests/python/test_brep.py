@@ -222,3 +222,16 @@ def test_write_step_progress_and_cancel_leaves_no_file(tmp_path):
     lat.write_step(path, body=body("cylinder.brep"), skin=0.1, progress=lambda f: seen.append(f) or True)
     assert seen == sorted(seen) and seen[-1] == 1.0
     assert {p["name"] for p in sl.read_step(path)} == {"Lattice", "Skin"}
+
+
+def test_coincident_groups_build_one_ball():
+    # Two groups a table places at the same spot, joined by a beam: each ball contains the other, and one of
+    # them (the lower index) must be built instead of both being dropped as absorbed (issue 16, repro 06).
+    import math
+    same = sl.Similarity.translation((1.0, 2.0, 3.0))
+    lat = sl.Lattice.from_table([((0, 0, 0), 0.2)], [(0, 1, 0, 0, 0)], (2, 1, 1), [same, same])
+    report = lat.clean_check()
+    assert report["absorbed_balls"] == [1]
+    props = sl.brep_properties(lat.brep())
+    assert props["valid"] and props["solids"] == 1
+    assert abs(props["volume"] - 4.0 / 3.0 * math.pi * 0.2 ** 3) < 1e-9

@@ -1,6 +1,7 @@
 """The Lattice API of the module: listings against iteration, stable indices, controls, files, bad input."""
 import json
 import math
+import re
 
 import numpy as np
 import pytest
@@ -160,3 +161,26 @@ def test_out_of_range_indices():
         lat.ball_id(lat.ball_count)
     with pytest.raises(ValueError):
         lat.ball(9, 0, 0, 0)
+
+
+def test_unreadable_json_shapes_are_refused_naming_the_field():
+    # Nodes, beams or frames that are not JSON objects (issue 16, repro 08), integers beyond int64, and an
+    # indentation that only makes the file grow (repro 13) are refused with ValueError naming the field.
+    base = json.loads(graded().to_json())
+    for key, bad, field in [("nodes", [5], "nodes[0]: expected an object"),
+                            ("beams", [[0, 1, 0, 0, 0]], "beams[0]: expected an object"),
+                            ("counts", [2 ** 64 - 1, 1, 1], "counts.u: integer out of range")]:
+        doc = dict(base)
+        doc[key] = bad
+        with pytest.raises(ValueError, match=re.escape(field)):
+            sl.Lattice.from_json(json.dumps(doc))
+    doc = json.loads(json.dumps(base))
+    doc["layout"]["placement"] = {"type": "frames", "from": [1], "to": [2]}
+    with pytest.raises(ValueError, match=r"layout\.placement\.(from|to): expected an object"):
+        sl.Lattice.from_json(json.dumps(doc))
+    for indent in (-2, 65, 1000000):
+        with pytest.raises(ValueError, match="indent"):
+            graded().to_json(indent=indent)
+    assert graded().to_json(indent=64).startswith("{")
+    with pytest.raises(ValueError, match="max_reported: must be >= 0"):
+        graded().clean_check(max_reported=-1)

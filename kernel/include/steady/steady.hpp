@@ -7,6 +7,7 @@
 #include "steady/core/errors.hpp"
 #include "steady/core/frame.hpp"
 #include "steady/core/memory_budget.hpp"
+#include "steady/core/numeric_range.hpp"
 #include "steady/core/progress.hpp"
 #include "steady/core/rotation.hpp"
 #include "steady/core/similarity.hpp"

@@ -1,15 +1,18 @@
 #include "steady/core/memory_budget.hpp"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
 #include "steady/core/errors.hpp"
 
 namespace steady {
+namespace {
 
-std::uint64_t available_memory_bytes() {
+std::uint64_t machine_available_bytes() {
   std::ifstream meminfo("/proc/meminfo");
   std::string key;
   std::uint64_t value = 0;
@@ -21,13 +24,36 @@ std::uint64_t available_memory_bytes() {
   return pages > 0 && page > 0 ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) : 0;
 }
 
+// The process's address-space limit (ulimit -v) minus what it already maps, or "no limit".
+std::uint64_t process_headroom_bytes() {
+  rlimit limit{};
+  if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return UINT64_MAX;
+  std::ifstream status("/proc/self/statm");
+  std::uint64_t pages = 0;
+  status >> pages;  // total program size, in pages
+  const std::uint64_t mapped = pages * static_cast<std::uint64_t>(sysconf(_SC_PAGESIZE));
+  return limit.rlim_cur > mapped ? limit.rlim_cur - mapped : 0;
+}
+
+}  // namespace
+
+std::uint64_t available_memory_bytes() { return std::min(machine_available_bytes(), process_headroom_bytes()); }
+
+std::uint64_t memory_budget_bytes() {
+  return static_cast<std::uint64_t>(kMemoryBudgetFraction * static_cast<double>(available_memory_bytes()));
+}
+
 void require_memory(std::uint64_t bytes, const std::string& what) {
-  const std::uint64_t available = available_memory_bytes();
-  if (static_cast<double>(bytes) <= kMemoryBudgetFraction * static_cast<double>(available)) return;
+  const std::uint64_t budget = memory_budget_bytes();
+  if (bytes <= budget) return;
+  const bool process_limited = process_headroom_bytes() < machine_available_bytes();
   std::ostringstream os;
   os.precision(3);
-  os << what << " needs " << static_cast<double>(bytes) / 1e9 << " GB, more than this machine can give ("
-     << static_cast<double>(available) / 1e9 << " GB available); query a region or use the closed-form properties instead";
+  os << what << " needs " << static_cast<double>(bytes) / 1e9 << " GB, more than the " << static_cast<double>(budget) / 1e9
+     << " GB it may use (" << kMemoryBudgetFraction * 100 << " % of the "
+     << static_cast<double>(available_memory_bytes()) / 1e9 << " GB "
+     << (process_limited ? "left under this process's memory limit" : "this machine has available")
+     << "); query a region, use the closed-form properties, or a preview instead";
   throw ResourceLimit(os.str());
 }
 

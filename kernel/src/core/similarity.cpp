@@ -7,6 +7,7 @@
 
 #include "core/similarity_generator.hpp"
 #include "steady/core/errors.hpp"
+#include "steady/core/numeric_range.hpp"
 #include "steady/core/rotation.hpp"
 #include "steady/core/tolerance.hpp"
 
@@ -21,9 +22,11 @@ void require_finite_vec(const Vec3& v, const std::string& field) {
 
 Vec3 unit_axis(const Vec3& axis, const char* field) {
   require_finite_vec(axis, field);
-  const double len = glm::length(axis);
-  if (!(len > 0.0)) fail_input(field, "the axis must be a non-zero vector");
-  return axis / len;
+  // Scaled by its largest component first: |axis| of huge components would overflow, of tiny ones underflow.
+  const double largest = std::max({std::abs(axis.x), std::abs(axis.y), std::abs(axis.z)});
+  if (!(largest > 0.0)) fail_input(field, "the axis must be a non-zero vector");
+  const Vec3 scaled = axis / largest;
+  return scaled / glm::length(scaled);
 }
 
 // Rotation by |omega| about omega / |omega|.
@@ -102,14 +105,20 @@ void Similarity::cache_group_element() {
   scale_ = std::exp(log_scale_);
   rotation_ = rotation_from_vector(rotation_vector_);
   translation_ = translation_from_generator(log_scale_, rotation_vector_, velocity_);
+  require_within(translation_, kMaxCoordinate, "similarity: its translation");
 }
 
 Similarity Similarity::identity() { return Similarity(); }
 
 Similarity Similarity::from_generator(double log_scale, const Vec3& rotation_vector, const Vec3& velocity) {
-  require_finite(log_scale, "log_scale");
+  // Every similarity is made here: its range is checked once (numeric_range.hpp).
+  require_within(log_scale, kMaxLogScale, "log_scale");
   require_finite_vec(rotation_vector, "rotation_vector");
-  require_finite_vec(velocity, "velocity");
+  if (!(glm::length(rotation_vector) <= kMaxAngle))
+    fail_input("rotation_vector", "its angle " + std::to_string(glm::length(rotation_vector)) +
+                                      " rad is beyond the supported range of " + std::to_string(kMaxAngle) + " rad");
+  require_within(velocity, kMaxCoordinate * std::max(1.0, std::abs(log_scale) + glm::length(rotation_vector)),
+                 "velocity");
   Similarity s;
   s.log_scale_ = log_scale;
   s.rotation_vector_ = rotation_vector;
@@ -119,13 +128,13 @@ Similarity Similarity::from_generator(double log_scale, const Vec3& rotation_vec
 }
 
 Similarity Similarity::translation(const Vec3& vector) {
-  require_finite_vec(vector, "translation.vector");
+  require_within(vector, kMaxCoordinate, "translation.vector");
   return from_generator(0.0, Vec3(0.0), vector);
 }
 
 Similarity Similarity::rotation(double angle, const Vec3& axis, const Vec3& point) {
-  require_finite(angle, "rotation.angle");
-  require_finite_vec(point, "rotation.point");
+  require_within(angle, kMaxAngle, "rotation.angle");
+  require_within(point, kMaxCoordinate, "rotation.point");
   const Vec3 omega = angle * unit_axis(axis, "rotation.axis");
   // The velocity field of a rotation about the line through `point`: v(p) = omega x (p - point).
   return from_generator(0.0, omega, -glm::cross(omega, point));
@@ -133,24 +142,26 @@ Similarity Similarity::rotation(double angle, const Vec3& axis, const Vec3& poin
 
 Similarity Similarity::dilation(double scale, const Vec3& center) {
   require_positive(scale, "dilation.scale");
-  require_finite_vec(center, "dilation.center");
+  require_within(std::log(scale), kMaxLogScale, "dilation.scale (its logarithm)");
+  require_within(center, kMaxCoordinate, "dilation.center");
   const double sigma = std::log(scale);
   return from_generator(sigma, Vec3(0.0), -sigma * center);
 }
 
 Similarity Similarity::screw(double angle, const Vec3& axis, const Vec3& point, double distance) {
-  require_finite(angle, "screw.angle");
-  require_finite(distance, "screw.distance");
-  require_finite_vec(point, "screw.point");
+  require_within(angle, kMaxAngle, "screw.angle");
+  require_within(distance, kMaxCoordinate, "screw.distance");
+  require_within(point, kMaxCoordinate, "screw.point");
   const Vec3 n = unit_axis(axis, "screw.axis");
   const Vec3 omega = angle * n;
   return from_generator(0.0, omega, -glm::cross(omega, point) + distance * n);
 }
 
 Similarity Similarity::swirl(double angle, const Vec3& axis, const Vec3& center, double scale) {
-  require_finite(angle, "swirl.angle");
+  require_within(angle, kMaxAngle, "swirl.angle");
   require_positive(scale, "swirl.scale");
-  require_finite_vec(center, "swirl.center");
+  require_within(std::log(scale), kMaxLogScale, "swirl.scale (its logarithm)");
+  require_within(center, kMaxCoordinate, "swirl.center");
   const Vec3 omega = angle * unit_axis(axis, "swirl.axis");
   const double sigma = std::log(scale);
   // The generator vanishes at the fixed point: sigma c + omega x c + v = 0.
@@ -159,7 +170,8 @@ Similarity Similarity::swirl(double angle, const Vec3& axis, const Vec3& center,
 
 Similarity Similarity::from_matrix(double scale, const Mat3& rotation, const Vec3& translation) {
   require_positive(scale, "scale");
-  require_finite_vec(translation, "translation");
+  require_within(std::log(scale), kMaxLogScale, "scale (its logarithm)");
+  require_within(translation, kMaxCoordinate, "translation");
   validate_rotation_matrix(rotation, "rotation");
   const double sigma = std::log(scale);
   const Vec3 omega = rotation_vector_from_matrix(rotation);

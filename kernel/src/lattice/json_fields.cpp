@@ -1,6 +1,7 @@
 // JSON fields of the lattice file format, read with the path of each field in every refusal.
 #include "lattice/json_fields.hpp"
 
+#include <cstdint>
 #include <set>
 
 #include "steady/core/errors.hpp"
@@ -8,6 +9,7 @@
 namespace steady::detail {
 
 void refuse_unknown_keys(const json& obj, const std::string& path, std::initializer_list<const char*> allowed) {
+  if (!obj.is_object()) fail_input(path.empty() ? "file" : path, "expected an object");
   const std::set<std::string> ok(allowed.begin(), allowed.end());
   for (auto it = obj.begin(); it != obj.end(); ++it)
     if (!ok.count(it.key())) fail_input(path.empty() ? it.key() : path + "." + it.key(), "unknown field");
@@ -30,6 +32,8 @@ double as_number(const json& value, const std::string& path) {
 
 std::int64_t as_integer(const json& value, const std::string& path) {
   if (!value.is_number_integer()) fail_input(path, "expected an integer");
+  if (value.is_number_unsigned() && value.get<std::uint64_t>() > static_cast<std::uint64_t>(INT64_MAX))
+    fail_input(path, "integer out of range");
   return value.get<std::int64_t>();
 }
 

@@ -10,6 +10,7 @@
 #include "lattice/rank.hpp"
 #include "steady/lattice/any_order_layout.hpp"
 #include "steady/core/errors.hpp"
+#include "steady/core/numeric_range.hpp"
 
 namespace steady {
 namespace {
@@ -117,8 +118,9 @@ void Lattice::validate() const {
   if (d.nodes.empty()) fail_input("nodes", "the template needs at least one node");
   for (std::size_t n = 0; n < d.nodes.size(); ++n) {
     const std::string f = field("nodes", n);
-    for (int c = 0; c < 3; ++c) require_finite(d.nodes[n].center[c], f + ".center");
+    require_within(d.nodes[n].center, kMaxCoordinate, f + ".center");
     require_positive(d.nodes[n].radius, f + ".radius");
+    require_within(d.nodes[n].radius, kMaxCoordinate, f + ".radius");
   }
   const Counts& counts = d.layout->counts();  // >= 1 each: the layout checked them
   const std::int64_t cs[3] = {counts.u, counts.v, counts.w};

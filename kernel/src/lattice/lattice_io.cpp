@@ -29,6 +29,9 @@ std::string similarity_to_json(const Similarity& s) { return write_similarity(s)
 Similarity similarity_from_json(const std::string& text) { return read_similarity(parse(text), "similarity", false); }
 
 std::string lattice_to_json(const Lattice& lattice, int indent) {
+  if (indent < -1 || indent > kMaxJsonIndent)
+    fail_input("indent", "must be -1 (one line) to " + std::to_string(kMaxJsonIndent) + " (got " +
+                             std::to_string(indent) + ")");
   const LatticeDefinition& d = lattice.definition();
   json j;
   j["format"] = kLatticeFormatName;

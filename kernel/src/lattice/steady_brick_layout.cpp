@@ -5,6 +5,7 @@
 #include "lattice/layout_limits.hpp"
 #include "lattice/layout_registry.hpp"
 #include "steady/core/errors.hpp"
+#include "steady/core/tolerance.hpp"
 
 namespace steady {
 namespace {
@@ -25,6 +26,12 @@ SteadyBrickLayout::SteadyBrickLayout(const Counts& counts, const std::array<Dire
   brick_.steps = steps_;
   brick_.axes = kUVW;
   require_representable_scales(max_abs_log_scale(), "U, V, W");
+  // A step that maps nothing anywhere puts every group of its direction in the same place.
+  const char* names[3] = {"U", "V", "W"};
+  for (int a = 0; a < 3; ++a)
+    if (counts.along(a) > 1 && steps_[a].map_distance(Similarity::identity()) <= kLengthTolerance)
+      fail_input(names[a], "the step is the identity: the " + std::to_string(counts.along(a)) +
+                               " groups along " + names[a] + " would all lie in the same place (give a step, or count 1)");
   for (int a = 0; a < 3; ++a) {
     const std::int64_t n = counts.along(a);
     if (n > detail::kMaxCachedLayoutPowers) continue;

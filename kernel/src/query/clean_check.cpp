@@ -8,6 +8,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "steady/core/errors.hpp"
 #include "steady/lattice/beam_frustum.hpp"
 #include "steady/lattice/broad_phase.hpp"
 #include "steady/lattice/convex_distance.hpp"
@@ -235,10 +236,15 @@ std::vector<char> absorbed_balls(const FlatLattice& f, const std::vector<BeamFru
         all_degenerate = false;
         break;
       }
+      const std::int64_t j = f.other_ball(*e, i);
       const Ball& me = f.balls[i];
-      const Ball& other = f.balls[f.other_ball(*e, i)];
-      if (glm::length(me.center - other.center) + me.radius <= other.radius * (1.0 + kCleanRelativeGap))
-        contained = true;
+      const Ball& other = f.balls[j];
+      const double d = glm::length(me.center - other.center);
+      const bool in_other = d + me.radius <= other.radius * (1.0 + kCleanRelativeGap);
+      // Two balls that contain each other (coincident): the one with the lower index stays, so that one of
+      // them is built and not both dropped.
+      const bool mutual = d + other.radius <= me.radius * (1.0 + kCleanRelativeGap);
+      if (in_other && !(mutual && j > i)) contained = true;
     }
     absorbed[i] = all_degenerate && contained;
   }
@@ -246,6 +252,8 @@ std::vector<char> absorbed_balls(const FlatLattice& f, const std::vector<BeamFru
 }
 
 CleanReport check_clean(const FlatLattice& f, const CleanCheckOptions& options) {
+  if (options.max_reported < 0)
+    fail_input("max_reported", "must be >= 0 (got " + std::to_string(options.max_reported) + ")");
   CleanReport report;
   const Elements el = prepare(f, report);
   tbb::enumerable_thread_specific<std::vector<CleanIssue>> found;
@@ -263,6 +271,8 @@ CleanReport check_clean(const FlatLattice& f, const CleanCheckOptions& options) 
 }
 
 CleanReport check_clean(const Lattice& lattice, const CleanCheckOptions& options) {
+  if (options.max_reported < 0)  // before flattening the lattice
+    fail_input("max_reported", "must be >= 0 (got " + std::to_string(options.max_reported) + ")");
   return check_clean(flatten(lattice), options);
 }
 

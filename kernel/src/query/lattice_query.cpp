@@ -7,6 +7,7 @@
 #include "query/hit_sinks.hpp"
 #include "query/query_internal.hpp"
 #include "steady/core/errors.hpp"
+#include "steady/core/numeric_range.hpp"
 #include "steady/query/query_tolerance.hpp"
 
 namespace steady {
@@ -35,11 +36,12 @@ QueryMethod query_method_from_string(const std::string& name, const std::string&
 
 void validate_query_ball(const Ball& query, const std::string& field) {
   // The common case without building any message.
-  if (std::isfinite(query.center.x) && std::isfinite(query.center.y) && std::isfinite(query.center.z) &&
-      std::isfinite(query.radius) && query.radius >= 0.0)
+  const Vec3& c = query.center;
+  if (std::abs(c.x) <= kMaxCoordinate && std::abs(c.y) <= kMaxCoordinate && std::abs(c.z) <= kMaxCoordinate &&
+      query.radius >= 0.0 && query.radius <= kMaxQueryRadius)
     return;
-  for (int c = 0; c < 3; ++c) require_finite(query.center[c], field + ".center");
-  require_finite(query.radius, field + ".radius");
+  require_within(query.center, kMaxCoordinate, field + ".center");
+  require_within(query.radius, kMaxQueryRadius, field + ".radius");
   if (query.radius < 0.0) fail_input(field + ".radius", "must be >= 0 (got " + std::to_string(query.radius) + ")");
 }
 

@@ -8,6 +8,7 @@
 
 #include "query/hit_sinks.hpp"
 #include "steady/core/errors.hpp"
+#include "steady/core/numeric_range.hpp"
 #include "steady/query/interference.hpp"
 #include "steady/core/memory_budget.hpp"
 
@@ -26,7 +27,8 @@ constexpr double kDistanceFirstScale = 2.0;
 Vec3 point_at(const double* p, std::size_t i, const char* field) {
   const Vec3 v(p[3 * i], p[3 * i + 1], p[3 * i + 2]);
   for (int c = 0; c < 3; ++c)
-    if (!std::isfinite(v[c])) fail_input(std::string(field) + "[" + std::to_string(i) + "]", "must be finite");
+    if (!(std::abs(v[c]) <= kMaxCoordinate))  // NaN fails too
+      require_within(v, kMaxCoordinate, std::string(field) + "[" + std::to_string(i) + "]");
   return v;
 }
 

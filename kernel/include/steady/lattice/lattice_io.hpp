@@ -14,6 +14,8 @@ namespace steady {
 constexpr int kLatticeFormatVersion = 2;
 constexpr const char* kLatticeFormatName = "steady-lattice";
 
+// Spaces per level of indentation (-1: one line). Beyond kMaxJsonIndent the file only grows.
+constexpr int kMaxJsonIndent = 64;
 std::string lattice_to_json(const Lattice& lattice, int indent = 2);
 Lattice lattice_from_json(const std::string& text);
 

@@ -128,7 +128,12 @@ class LatticeQuery {
   std::unique_ptr<Impl> impl_;
 };
 
-// Throws InvalidInput naming `field` unless the ball has a finite center and a finite radius >= 0.
+// A query ball reaches at most this far (model units): it holds any lattice of the supported range
+// (numeric_range.hpp) seen from any point of it.
+constexpr double kMaxQueryRadius = 4e12;
+
+// Throws InvalidInput naming `field` unless the ball's center is within the supported range and its radius
+// is in [0, kMaxQueryRadius].
 void validate_query_ball(const Ball& query, const std::string& field);
 
 }  // namespace steady
