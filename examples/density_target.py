@@ -8,7 +8,7 @@ import os
 import FreeCAD
 
 from latticewb import api
-from latticewb.features import mass_properties
+from latticewb.kernel import mass
 from latticewb.macro import run_macro
 
 
@@ -24,11 +24,11 @@ def main():
     scale = api.target_density(lattice, relative_density=0.12)
     doc.recompute()
     lines.append("12 %% relative density: radii scaled by %.6f" % scale)
-    lines.append(mass_properties.report_text(lattice, api.properties(lattice)))
+    lines.append(mass.report_text(lattice, api.properties(lattice)))
     scale = api.target_density(lattice, mass=0.025)
     doc.recompute()
     lines.append("25 g: radii scaled by %.6f" % scale)
-    lines.append(mass_properties.report_text(lattice, api.properties(lattice)))
+    lines.append(mass.report_text(lattice, api.properties(lattice)))
     path = os.path.join(out_dir, "density_target.txt")
     with open(path, "w") as f:
         f.write("\n\n".join(lines) + "\n")

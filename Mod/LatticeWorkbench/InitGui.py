@@ -7,7 +7,7 @@ class LatticeWorkbench(FreeCADGui.Workbench):
     ToolTip = "Steady lattices: balls and conical beams laid out by similarities, trimmed into CAD parts"
 
     def __init__(self):
-        from latticewb import resources
+        from latticewb.utils import resources
         self.__class__.Icon = resources.icon("LatticeWorkbench")
 
     def Initialize(self):

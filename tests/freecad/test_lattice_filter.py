@@ -11,7 +11,7 @@ import FreeCAD
 
 from brute_force import beams_between, gap_to_lattice
 from latticewb import api
-from latticewb.features import lattice_filter
+from latticewb.kernel import lattice_filter
 
 
 class LatticeFilterTest(unittest.TestCase):

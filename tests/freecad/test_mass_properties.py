@@ -8,7 +8,7 @@ import FreeCAD
 import Part
 
 from latticewb import api
-from latticewb.features import mass_properties
+from latticewb.kernel import mass as mass_properties
 
 
 class MassPropertiesTest(unittest.TestCase):

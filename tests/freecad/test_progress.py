@@ -7,8 +7,8 @@ import FreeCAD
 
 import steadylattice as sl
 from latticewb import api
-from latticewb.features import lattice_shape
-from latticewb.progress import LongOperation
+from latticewb.kernel import lattice_shape
+from latticewb.utils.progress import LongOperation
 
 
 def cancelling_on(predicate):

@@ -8,7 +8,8 @@ import FreeCAD
 import Part
 
 import steadylattice as sl
-from latticewb import api, presets
+from latticewb import api
+from latticewb.kernel import presets
 
 
 def lattice_points(preset, cells):

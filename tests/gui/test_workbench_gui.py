@@ -7,7 +7,7 @@ import FreeCAD
 import FreeCADGui
 from PySide import QtGui
 
-from latticewb.gui import lattice_task_panel
+from latticewb.taskpanels import lattice_task_panel
 from screenshots import ink_fraction, save_view, save_window
 
 

@@ -1,11 +1,11 @@
 """Toolbar and menu commands of the workbench. Each command is a thin shell over latticewb.api, inside an undo
-transaction; long work reports progress (see latticewb.progress)."""
+transaction; long work reports progress (see latticewb.utils.progress)."""
 import os
 
 import FreeCAD
 import FreeCADGui
 
-from latticewb import resources
+from latticewb.utils import resources, types
 
 
 def _create(doc, transaction, make):
@@ -45,7 +45,7 @@ class NewLatticeCommand:
 
     def Activated(self):
         from latticewb import api
-        from latticewb.gui.lattice_task_panel import LatticeTaskPanel
+        from latticewb.taskpanels.lattice_task_panel import LatticeTaskPanel
         doc = FreeCAD.ActiveDocument
         doc.openTransaction("New steady lattice")
         obj = api.make_lattice(doc)
@@ -69,13 +69,13 @@ class LatticePartCommand:
         }
 
     def IsActive(self):
-        return any(hasattr(o, "Preset") for o in FreeCADGui.Selection.getSelection())
+        return any(types.is_lattice(o) for o in FreeCADGui.Selection.getSelection())
 
     def Activated(self):
         from latticewb import api
         selection = FreeCADGui.Selection.getSelection()
-        lattices = [o for o in selection if hasattr(o, "Preset")]
-        bodies = [o for o in selection if not hasattr(o, "Preset") and hasattr(o, "Shape") and o.Shape.Solids]
+        lattices = [o for o in selection if types.is_lattice(o)]
+        bodies = [o for o in selection if not types.is_lattice(o) and hasattr(o, "Shape") and o.Shape.Solids]
         if len(lattices) != 1 or len(bodies) > 1:
             FreeCAD.Console.PrintError("Lattice part: select one steady lattice and at most one solid body\n")
             return
@@ -98,22 +98,20 @@ class FilterCommand:
         }
 
     def IsActive(self):
-        from latticewb.features.lattice_filter import is_lattice_source
-        return any(is_lattice_source(o) for o in FreeCADGui.Selection.getSelection())
+        return any(types.is_lattice_source(o) for o in FreeCADGui.Selection.getSelection())
 
     def Activated(self):
         from latticewb import api
-        from latticewb.features.lattice_filter import is_lattice_source
         selection = FreeCADGui.Selection.getSelection()
         source = selection[0]
-        if not is_lattice_source(source):
+        if not types.is_lattice_source(source):
             FreeCAD.Console.PrintError("Filter: select the lattice to filter first\n")
             return
         second = selection[1] if len(selection) > 1 else None
         doc = FreeCAD.ActiveDocument
 
         def make():
-            if second is not None and is_lattice_source(second):
+            if second is not None and types.is_lattice_source(second):
                 return api.make_filter(doc, source, "lattice-in-lattice", coarse=second)
             if second is not None and hasattr(second, "Shape") and second.Shape.Solids:
                 return api.make_filter(doc, source, "inside body", body=second)
@@ -139,11 +137,11 @@ class PropertiesCommand:
     def Activated(self):
         from PySide import QtGui
         from latticewb import api
-        from latticewb.features import mass_properties
+        from latticewb.kernel import mass
         texts = []
         for obj in FreeCADGui.Selection.getSelection():
             try:
-                texts.append(mass_properties.report_text(obj, api.properties(obj)))
+                texts.append(mass.report_text(obj, api.properties(obj)))
             except ValueError as error:
                 texts.append("%s: %s" % (obj.Label, error))
         text = "\n\n".join(texts)
@@ -166,12 +164,12 @@ class DensityTargetCommand:
         }
 
     def IsActive(self):
-        return any(hasattr(o, "Preset") for o in FreeCADGui.Selection.getSelection())
+        return any(types.is_lattice(o) for o in FreeCADGui.Selection.getSelection())
 
     def Activated(self):
         from PySide import QtGui
         from latticewb import api
-        obj = [o for o in FreeCADGui.Selection.getSelection() if hasattr(o, "Preset")][0]
+        obj = [o for o in FreeCADGui.Selection.getSelection() if types.is_lattice(o)][0]
         choice, ok = QtGui.QInputDialog.getItem(FreeCADGui.getMainWindow(), "Density target", "Target:",
                                                 ["relative density (%)", "mass (g)"], 0, False)
         if not ok:

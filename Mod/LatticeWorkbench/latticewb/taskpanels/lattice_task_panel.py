@@ -7,7 +7,7 @@ import FreeCAD
 import FreeCADGui
 from PySide import QtCore, QtGui
 
-from latticewb.features import steady_lattice
+from latticewb.objects import steady_lattice
 
 # Pause after the last edit before recomputing: long enough to type a number, short enough to feel live.
 _RECOMPUTE_DELAY_MS = 250

@@ -34,7 +34,7 @@ def _refuse(obj, prop, why):
 
 
 def _beams_problem(obj):
-    from latticewb.features.steady_lattice import parse_beam
+    from latticewb.kernel.steady_lattice import parse_beam
     count = len(obj.Nodes)
     for index, text in enumerate(obj.Beams):
         try:

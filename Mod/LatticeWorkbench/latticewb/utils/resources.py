@@ -2,8 +2,8 @@
 package.xml's icon relative to the Mod folder, so checkout and install share this layout)."""
 import os
 
-# realpath: the Mod folder may be a symlink to a checkout
-_RESOURCES = os.path.join(os.path.dirname(os.path.dirname(os.path.realpath(__file__))), "Resources")
+# realpath: the Mod folder may be a symlink to a checkout. This file is Mod/LatticeWorkbench/latticewb/utils/.
+_RESOURCES = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__)))), "Resources")
 
 
 def resource_dir():

@@ -32,7 +32,7 @@ def beam_frustum(ca, ra, cb, rb):
 def lattice_shape(lattice, report=None, ball_mask=None, beam_mask=None):
     """The balls and beams as separate solids (only those the masks keep, when given: a filtered lattice).
     report(fraction) -> False cancels (steadylattice.Cancelled)."""
-    from latticewb.progress import check_cancelled
+    from latticewb.utils.progress import check_cancelled
     elements = (lattice.ball_count if ball_mask is None else int(ball_mask.sum())) + \
         (lattice.beam_count if beam_mask is None else int(beam_mask.sum()))
     if elements > MAX_SEPARATE_SOLIDS:

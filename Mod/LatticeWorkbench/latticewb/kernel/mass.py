@@ -7,15 +7,11 @@ import math
 
 import FreeCAD
 
+from latticewb.kernel import steady_lattice
+from latticewb.utils import types
+
 # g/cm^3 -> kg/mm^3 (FreeCAD lengths are mm): 1 g/cm^3 = 1e-6 kg/mm^3
 _KG_PER_MM3 = 1e-6
-
-
-def add_density_property(obj):
-    if "Density" not in obj.PropertiesList:
-        obj.addProperty("App::PropertyFloat", "Density", "Material",
-                        "Density of the material in g/cm^3, for the mass in the properties report (Ti-6Al-4V: 4.43)")
-        obj.Density = 1.0
 
 
 def properties(obj):
@@ -24,9 +20,9 @@ def properties(obj):
     density = getattr(obj, "Density", 1.0)
     if not (math.isfinite(density) and density > 0.0):
         raise ValueError("Density: must be > 0 (got %g)" % density)
-    if hasattr(obj, "Preset"):
-        from latticewb import api
-        p = api.lattice(obj).properties()
+    lattice = types.is_lattice(obj)
+    if lattice:
+        p = steady_lattice.lattice(obj).properties()
         volume, area = p["volume"], p["area"]
         centroid = tuple(float(x) for x in p["centroid"])
         inertia = [[float(x) for x in row] for row in p["inertia"]]  # density 1: mm^5
@@ -53,7 +49,7 @@ def properties(obj):
         "volume": volume, "area": area, "centroid": centroid,
         "inertia": [[rho * x for x in row] for row in inertia],
         "mass": rho * volume, "density": density, "method": method,
-        "overlaps": overlaps if hasattr(obj, "Preset") else 0,
+        "overlaps": overlaps if lattice else 0,
     }
 
 
@@ -94,16 +90,13 @@ def report_text(obj, p):
 def cells_envelope_volume(obj):
     """Volume of the box of cells of a preset SteadyLattice, each cell scaled with its group (mm^3): the envelope a
     relative density refers to."""
-    from latticewb.features import steady_lattice
     if obj.Preset == steady_lattice.CUSTOM:
         return None
     lattice = steady_lattice.build_lattice(obj)
     aspect = steady_lattice.cell_aspect(obj)
     cell_volume = obj.CellSize.Value ** 3 * aspect[0] * aspect[1] * aspect[2]
-    order = steady_lattice.applied_order(obj)
-    cells = [(obj.CellsU, obj.CellsV, obj.CellsW)[a] for a in order]  # in the kernel's slot order
     total = cell_volume
-    for step, count in zip((lattice.U, lattice.V, lattice.W), cells):
+    for step, count in zip((lattice.U, lattice.V, lattice.W), (obj.CellsU, obj.CellsV, obj.CellsW)):
         s3 = step.scale ** 3
         total *= count if abs(s3 - 1.0) < 1e-15 else (s3 ** count - 1.0) / (s3 - 1.0)
     return total
@@ -112,7 +105,6 @@ def cells_envelope_volume(obj):
 def scale_for_target(obj, relative_density=None, mass=None):
     """The factor on every radius that gives the lattice the target relative density (against its box of cells) or
     the target mass (kg, at its Density)."""
-    from latticewb import api
     if (relative_density is None) == (mass is None):
         raise ValueError("give either relative_density or mass")
     if relative_density is not None:
@@ -126,12 +118,11 @@ def scale_for_target(obj, relative_density=None, mass=None):
         if not mass > 0.0:
             raise ValueError("mass: must be > 0 (got %g)" % mass)
         target = mass / (getattr(obj, "Density", 1.0) * _KG_PER_MM3)
-    return api.lattice(obj).radius_scale_for_volume(target)["scale"]
+    return steady_lattice.lattice(obj).radius_scale_for_volume(target)["scale"]
 
 
 def apply_radius_scale(obj, scale):
     """Multiplies every radius of a SteadyLattice by `scale` (node and beam radii, custom radii and beam ends)."""
-    from latticewb.features import steady_lattice
     if obj.Preset == steady_lattice.CUSTOM:
         obj.NodeRadii = [r * scale for r in obj.NodeRadii]
         beams = []

@@ -1,0 +1,43 @@
+"""A LatticePart object's kernel work: the lattice trimmed into its body (with a skin), as BREP text or as a
+STEP assembly of the skin and the lattice."""
+from latticewb.kernel import steady_lattice
+from latticewb.utils import types
+
+POLICIES = ["clip", "whole"]
+DANGLING = ["keep", "remove"]
+
+
+def body_brep(obj):
+    """BREP text of the part's body, in global coordinates, or None without a body."""
+    if obj.Body is None:
+        return None
+    shape = obj.Body.Shape
+    if shape.isNull() or not shape.Solids:
+        raise ValueError("Body: %s holds no solid to fill (a closed solid is needed)" % obj.Body.Label)
+    return shape.exportBrepToString()
+
+
+def kernel_request(obj):
+    """(placed steadylattice.Lattice, body BREP or None, policy, skin, dangling) of a LatticePart."""
+    if obj.Lattice is None:
+        raise ValueError("Lattice: link a SteadyLattice to trim")
+    if not types.is_lattice(obj.Lattice):
+        raise ValueError("Lattice: %s is not a SteadyLattice" % obj.Lattice.Label)
+    return steady_lattice.lattice(obj.Lattice), body_brep(obj), obj.Policy, obj.Skin.Value, obj.Dangling
+
+
+def part_brep(obj, report=None, stats=None):
+    """BREP text of the part. report(fraction) -> False cancels (steadylattice.Cancelled, nothing changed);
+    stats: None or a dict the kernel fills with how the trim went (see steadylattice.Lattice.brep)."""
+    lattice, body, policy, skin, dangling = kernel_request(obj)
+    if skin > 0.0 and body is None:
+        raise ValueError("Skin: a skin needs a Body")
+    return lattice.brep(body, policy, skin, dangling, progress=report, stats=stats)
+
+
+def write_step_assembly(obj, path, report=None):
+    """STEP with the skin and the lattice as two named, coloured parts (the kernel's XCAF writer).
+    report(fraction) -> False cancels (steadylattice.Cancelled; the file is not written)."""
+    lattice, body, policy, skin, dangling = kernel_request(obj)
+    lattice.write_step(path, body, policy, skin, dangling, lattice_name=obj.Label + " lattice",
+                       skin_name=obj.Label + " skin", progress=report)

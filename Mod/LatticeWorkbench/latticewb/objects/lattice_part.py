@@ -1,0 +1,102 @@
+"""LatticePart: a steady lattice trimmed into a body, optionally with a skin, as one exact B-rep solid.
+
+Links to a SteadyLattice and to a body (any object whose Shape holds a closed solid: a Part primitive, a PartDesign
+Body, an imported STEP part). The kernel classifies every hub against the body, keeps inside hubs whole, drops
+outside ones and cuts only the crossing hubs; with a skin, the body's wall of that thickness is united with the
+lattice trimmed to the inner offset. Editing the lattice or the body re-trims the part.
+
+Trimming shows FreeCAD's progress bar (and, when it lasts, a dialog with a Cancel button). A cancelled recompute
+keeps the previous shape and leaves the part touched (needing recompute), with a warning in the report view.
+"""
+import FreeCAD
+import Part
+
+from latticewb.kernel.lattice_part import DANGLING, POLICIES, part_brep
+from latticewb.objects import density
+from latticewb.utils import types
+from latticewb.utils.proxies import StatelessProxy, add_missing_properties
+
+_PROPERTIES = [
+    ("App::PropertyLink", "Lattice", "Part", "The SteadyLattice to trim"),
+    ("App::PropertyLink", "Body", "Part", "The solid the lattice fills (empty: the whole lattice as one part)"),
+    ("App::PropertyEnumeration", "Policy", "Part",
+     "clip: cut the lattice at the body's boundary; whole: keep only hubs entirely inside, never cut"),
+    ("App::PropertyEnumeration", "Dangling", "Part",
+     "keep or remove the beams that join a kept hub to a dropped one"),
+    ("App::PropertyLength", "Skin", "Part",
+     "Wall thickness of a skin (the body's inward offset) united with the lattice; 0: no skin"),
+    ("App::PropertyFloat", "Volume", "Result", "Volume of the part in mm^3 (read only)"),
+    ("App::PropertyInteger", "FaceCount", "Result", "Faces of the part's B-rep (read only)"),
+]
+
+
+class LatticePart(StatelessProxy):
+    Type = types.LATTICE_PART
+
+    def __init__(self, obj):
+        obj.Proxy = self
+        self.ensure_properties(obj)
+
+    @staticmethod
+    def ensure_properties(obj):
+        fresh = add_missing_properties(obj, _PROPERTIES)
+        if "Policy" in fresh:
+            obj.Policy = POLICIES
+            obj.Policy = "clip"
+        if "Dangling" in fresh:
+            obj.Dangling = DANGLING
+            obj.Dangling = "keep"
+        for name in ("Volume", "FaceCount"):
+            obj.setEditorMode(name, 1)
+        density.add_density_property(obj)
+
+    def onDocumentRestored(self, obj):
+        self.ensure_properties(obj)
+
+    def onChanged(self, obj, prop):
+        if prop == "Skin" and hasattr(obj, "Skin") and obj.Skin.Value < 0.0:
+            FreeCAD.Console.PrintWarning("%s: Skin must be >= 0 (got %g); set to 0\n" % (obj.Label, obj.Skin.Value))
+            obj.Skin = 0.0
+
+    def execute(self, obj):
+        import steadylattice
+        from latticewb.utils import progress
+        stats = {}
+        try:
+            with progress.LongOperation("Trimming %s" % obj.Label) as report:
+                text = part_brep(obj, report, stats)
+        except ValueError as error:
+            FreeCAD.Console.PrintError("%s: %s\n" % (obj.Label, error))
+            raise ValueError("%s: %s" % (obj.Label, error)) from None
+        except steadylattice.Cancelled:
+            progress.keep_previous_shape(obj, "trimming")
+            return
+        shape = Part.Shape()
+        shape.importBrepFromString(text)
+        obj.Shape = shape
+        obj.Volume = shape.Volume
+        obj.FaceCount = len(shape.Faces)
+        report_trim(obj.Label, stats)
+
+
+def report_trim(label, stats):
+    """Tells the report view what the user should know about a trim: Booleans that are exact only to a
+    tolerance (a warning), and the retries and fallbacks OpenCASCADE needed (messages)."""
+    if not stats:
+        return
+    if stats["fuzzy_clusters"]:
+        FreeCAD.Console.PrintWarning(
+            "%s: %d boundary cluster(s) of %d were clipped with a fuzzy Boolean (OpenCASCADE failed the exact one "
+            "where the body's surface grazes the lattice): the part is exact there only to 1e-4 to 1e-3 of a "
+            "hub's size\n" % (label, stats["fuzzy_clusters"], stats["band_clusters"]))
+    retried = stats["retried_clusters"] - stats["fuzzy_clusters"]
+    if retried > 0:
+        FreeCAD.Console.PrintMessage(
+            "%s: %d boundary cluster(s) clipped exactly on a second try (other layout or turned frame)\n"
+            % (label, retried))
+    if stats["relaid_out"]:
+        FreeCAD.Console.PrintMessage("%s: trimmed on a later attempt, the first having failed (%s)\n"
+                                     % (label, stats["relaid_reason"]))
+    if stats["union_through_pores"]:
+        FreeCAD.Console.PrintMessage("%s: the union with the skin went through the pores (%s)\n"
+                                     % (label, stats["pores_reason"]))

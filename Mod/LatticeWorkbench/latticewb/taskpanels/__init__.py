@@ -1,0 +1,1 @@
+"""Task panels (GUI): editing a document object with live feedback."""

@@ -1,0 +1,1 @@
+"""View providers (GUI): icons, the scalable preview and display defaults of the workbench's objects."""
