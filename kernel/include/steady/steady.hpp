@@ -23,6 +23,7 @@
 #include "steady/lattice/any_order_layout.hpp"
 #include "steady/lattice/lattice.hpp"
 #include "steady/lattice/lattice_io.hpp"
+#include "steady/lattice/presets.hpp"
 #include "steady/lattice/layout.hpp"
 #include "steady/lattice/steady_brick_layout.hpp"
 #include "steady/lattice/table_layout.hpp"

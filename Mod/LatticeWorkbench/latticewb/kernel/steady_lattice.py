@@ -52,7 +52,7 @@ def template(obj):
         patterns = [p + (beam_radius, beam_radius) for p in patterns]
     # one group per cell corner; the nodes of the far layers that stick out of the box of cells are omitted
     counts = tuple(c + 1 for c in cells)
-    return nodes, patterns, presets.outside_nodes(basis, cells), counts
+    return nodes, patterns, presets.outside_nodes(obj.Preset, cells), counts
 
 
 def _placement_similarity(placement, scale, translation_unit):
