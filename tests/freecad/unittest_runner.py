@@ -14,6 +14,8 @@ def run(folder, label):
         if os.environ.get(variable):
             sys.path.insert(0, os.environ[variable])
     sys.path.insert(0, folder)
+    # tests/common: the brute-force twins shared with the module's tests
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
     status = 1
     try:
         pattern = os.environ.get("STEADY_TEST_PATTERN", "test_*.py")

@@ -1,10 +1,15 @@
 """Shared fixtures of the module tests: the module under test and small lattices."""
 import math
+import os
+import sys
 
 import numpy as np
 import pytest
 
 import steadylattice as sl
+
+# tests/common: the brute-force twins shared with the FreeCAD tests
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
 
 
 @pytest.fixture

@@ -6,48 +6,10 @@ import numpy as np
 import pytest
 
 import steadylattice as sl
+from brute_force import Elements as Brute
 from conftest import cubic_lattice, random_similarity
 
 METHODS = ["naive", "rows", "rows-paper", "blocks", "auto"]
-
-
-def hull_distance(p, a, ra, b, rb):
-    """Distance from point p to each convex hull of balls (a, ra), (b, rb): the hull is the union of the
-    interpolated balls, so it is min over t of |p - c(t)| - r(t), a convex function of t (ternary search,
-    vectorized over the elements). Independent of the kernel's closed form."""
-    lo = np.zeros(len(a))
-    hi = np.ones(len(a))
-    f = lambda t: np.linalg.norm(p - (a + t[:, None] * (b - a)), axis=1) - (ra + t * (rb - ra))
-    for _ in range(80):
-        m1 = lo + (hi - lo) / 3
-        m2 = hi - (hi - lo) / 3
-        left = f(m1) < f(m2)
-        hi = np.where(left, m2, hi)
-        lo = np.where(left, lo, m1)
-    return np.minimum(np.minimum(f(np.zeros(len(a))), f(np.ones(len(a)))), f(0.5 * (lo + hi)))
-
-
-class Brute:
-    def __init__(self, lat):
-        self.c, self.r = lat.balls()
-        a, b, self.ra, self.rb = lat.beams()
-        self.a, self.b = self.c[a], self.c[b]
-
-    def ball_distances(self, p):
-        return np.linalg.norm(self.c - p, axis=1) - self.r
-
-    def beam_distances(self, p):
-        return hull_distance(p, self.a, self.ra, self.b, self.rb)
-
-    def query(self, center, radius, tol=1e-9):
-        """Indices certainly inside, and those within tol of the boundary (either answer is right)."""
-        db, de = self.ball_distances(center) - radius, self.beam_distances(center) - radius
-        return (np.flatnonzero(db <= -tol), np.flatnonzero(np.abs(db) < tol),
-                np.flatnonzero(de <= -tol), np.flatnonzero(np.abs(de) < tol))
-
-    def distance(self, p):
-        d = min(self.ball_distances(p).min(initial=np.inf), self.beam_distances(p).min(initial=np.inf))
-        return max(0.0, d)
 
 
 def random_lattice(rng, kind):
