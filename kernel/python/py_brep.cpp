@@ -32,6 +32,21 @@ steady::LatticePartRequest part_request(const py::object& body, const std::strin
   return r;
 }
 
+// Developers' diagnostics of a trim (TrimOptions::report) to a Python callable log(message); a diagnostic that
+// raises is reported as unraisable, never stops the trim.
+void set_log(steady::TrimOptions& options, const py::object& log) {
+  if (log.is_none()) return;
+  if (!PyCallable_Check(log.ptr())) value_error("log", "expected a callable log(message), or None");
+  options.report = [log](const std::string& message) {
+    py::gil_scoped_acquire gil;
+    try {
+      log(message);
+    } catch (py::error_already_set& e) {
+      e.discard_as_unraisable("steadylattice log");
+    }
+  };
+}
+
 std::array<double, 3> to_color(py::handle value, const std::string& name) {
   const steady::Vec3 c = to_vec3(value, name);
   for (int k = 0; k < 3; ++k)
@@ -117,8 +132,11 @@ void bind_brep(py::module_& m) {
   lattice.def(
       "brep",
       [](const Lattice& lat, const py::object& body, const std::string& policy, double skin,
-         const std::string& dangling, const py::object& progress, const py::object& stats) {
-        const steady::LatticePartRequest request = part_request(body, policy, skin, dangling);
+         const std::string& dangling, const py::object& progress, const py::object& stats, const py::object& log,
+         const std::string& dump_dir) {
+        steady::LatticePartRequest request = part_request(body, policy, skin, dangling);
+        set_log(request.trim, log);
+        request.trim.dump_directory = dump_dir;
         if (!stats.is_none() && !py::isinstance<py::dict>(stats))
           value_error("stats", "expected a dict to fill, or None");
         steady::TrimStats trim;
@@ -132,7 +150,8 @@ void bind_brep(py::module_& m) {
         return text;
       },
       py::arg("body") = py::none(), py::arg("policy") = "clip", py::arg("skin") = 0.0, py::arg("dangling") = "keep",
-      py::arg("progress") = py::none(), py::arg("stats") = py::none(),
+      py::arg("progress") = py::none(), py::arg("stats") = py::none(), py::arg("log") = py::none(),
+      py::arg("dump_dir") = "",
       "BREP text of the lattice as one solid (a compound of solids when it has several components). body: BREP "
       "text of a solid (Part.Shape.exportBrepToString()) to trim into; policy: 'clip' (cut at the boundary) or "
       "'whole' (keep only hubs entirely inside, never cut); skin: wall thickness of a skin united with the "
@@ -144,7 +163,9 @@ void bind_brep(py::module_& m) {
       "to keep clusters apart), retried_clusters and of those "
       "relaid_/turned_/fuzzy_clusters (fuzzy: clipped with a tolerance of 1e-4 to 1e-3 of the cluster's size, "
       "exact only to that), holed_clusters (glued to the skin with no Boolean), relaid_out and union_through_pores "
-      "with their reasons, faces, boolean_seconds, union_seconds.");
+      "with their reasons, faces, boolean_seconds, union_seconds. log: None or a callable log(message) receiving "
+      "the trim's diagnostics as they happen (build times, failed attempts, a union through the pores). dump_dir: "
+      "a folder where a boundary cluster that fails every attempt is written as BREP, for study.");
   lattice.def(
       "write_step",
       [](const Lattice& lat, const std::string& path, const py::object& body, const std::string& policy, double skin,

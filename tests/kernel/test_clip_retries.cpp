@@ -1,7 +1,7 @@
-// The retries of a boundary cluster (steady/clip_retries.hpp) on two clusters where OpenCASCADE's first Common
+// The retries of a boundary cluster (brep/clip_retries.hpp) on two clusters where OpenCASCADE's first Common
 // failed: clusters 671 and 1136 of the benchmark's 101,343-beam lattice with a 0.4 skin in a cylinder tilted by
 // 0.05 rad (`bench_brep --child scale 33,33,32 check 0.4 0.05`), stored as BREP (data/, written by
-// STEADY_TRIM_DUMP). Whatever attempt succeeds must give the part of the cluster inside the tool: checked against
+// TrimOptions::dump_directory). Whatever attempt succeeds must give the part of the cluster inside the tool: checked against
 // Monte Carlo with OpenCASCADE's point classifier, and its untouched faces must come back as the very same faces.
 #include <BRepAlgoAPI_Common.hxx>
 #include <BRepBndLib.hxx>

@@ -235,3 +235,20 @@ def test_coincident_groups_build_one_ball():
     props = sl.brep_properties(lat.brep())
     assert props["valid"] and props["solids"] == 1
     assert abs(props["volume"] - 4.0 / 3.0 * math.pi * 0.2 ** 3) < 1e-9
+
+
+def test_trim_diagnostics_reach_a_log_callable():
+    # The trim's diagnostics come through the log callable (no environment variables in the kernel); a log that
+    # raises does not stop the trim, and a log that is not callable is refused.
+    lat = strut_lattice(4)
+    messages = []
+    text = lat.brep(body=body("box.brep"), log=messages.append)
+    assert sl.brep_properties(text)["valid"]
+    assert any(m.startswith("trim: built the boundary and interior hubs in") for m in messages), messages
+
+    def broken(message):
+        raise RuntimeError("a broken log")
+
+    assert sl.brep_properties(lat.brep(body=body("box.brep"), log=broken))["valid"]
+    with pytest.raises(ValueError, match="log: expected a callable"):
+        lat.brep(body=body("box.brep"), log=3)

@@ -869,12 +869,11 @@ std::shared_ptr<const HubCore> build_transversal_core(const std::vector<CoreStum
     const TopoDS_Face& t = found[i];
     if (t.IsNull()) {
       std::ostringstream os;
-      os << "the collar of stump " << i << " (of " << stumps.size() << ") was touched by the Fuse of its hub";
-      if (std::getenv("STEADY_DEBUG_CORES"))
-        for (std::size_t k = 0; k < stumps.size(); ++k)
-          os << "\n  stump " << k << " direction " << stumps[k].direction.x << " " << stumps[k].direction.y << " "
-             << stumps[k].direction.z << " sin_phi " << stumps[k].sin_phi << " end_radius " << stumps[k].end_radius
-             << " collar " << collars[k];
+      os << "the collar of stump " << i << " (of " << stumps.size() << ") was touched by the Fuse of its hub (stumps:";
+      for (std::size_t k = 0; k < stumps.size(); ++k)  // the hub, for a bug report
+        os << " [" << stumps[k].direction.x << " " << stumps[k].direction.y << " " << stumps[k].direction.z
+           << ", sin_phi " << stumps[k].sin_phi << ", end " << stumps[k].end_radius << ", collar " << collars[k] << "]";
+      os << ")";
       unsupported(os.str());
     }
     TopExp_Explorer x(t, TopAbs_EDGE);

@@ -1,10 +1,17 @@
 """A LatticePart object's kernel work: the lattice trimmed into its body (with a skin), as BREP text or as a
 STEP assembly of the skin and the lattice."""
+import FreeCAD
+
 from latticewb.kernel import steady_lattice
 from latticewb.utils import types
 
 POLICIES = ["clip", "whole"]
 DANGLING = ["keep", "remove"]
+
+
+def _log(message):
+    """The kernel's diagnostics of a trim go to FreeCAD's log (Edit > Preferences > Report view > Log)."""
+    FreeCAD.Console.PrintLog(message + "\n")
 
 
 def body_brep(obj):
@@ -32,7 +39,7 @@ def part_brep(obj, report=None, stats=None):
     lattice, body, policy, skin, dangling = kernel_request(obj)
     if skin > 0.0 and body is None:
         raise ValueError("Skin: a skin needs a Body")
-    return lattice.brep(body, policy, skin, dangling, progress=report, stats=stats)
+    return lattice.brep(body, policy, skin, dangling, progress=report, stats=stats, log=_log)
 
 
 def write_step_assembly(obj, path, report=None):

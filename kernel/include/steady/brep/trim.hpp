@@ -15,6 +15,7 @@
 #include <TopoDS_Shape.hxx>
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include "steady/lattice/flat_lattice.hpp"
@@ -37,6 +38,12 @@ struct TrimOptions {
   bool verify_booleans = true;  // check the Booleans' output with BRepCheck (an error instead of a bad solid)
   bool move_cuts = true;  // cut beams between crossing hubs off their middle where that keeps the hubs in
                           // separate clusters (false: only halfway, for comparisons)
+  // Diagnostics as they happen, for the developers (how long the hubs took, why an attempt failed, why the union
+  // went through the pores); none when empty. Python: brep(..., log=print).
+  std::function<void(const std::string&)> report;
+  // Where a cluster that fails every clip attempt (both layouts and the tool), and faces a union leaves open, are
+  // written as BREP for study; empty: not written.
+  std::string dump_directory;
 };
 
 struct TrimStats {

@@ -1,0 +1,280 @@
+// Trimming: each boundary cluster's Common with the boundary, in parallel, and the retry ladder of the clusters
+// whose first Common failed (docs/brep.md, "retries").
+#include <BRepAlgoAPI_Common.hxx>
+#include <BRepBndLib.hxx>
+#include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
+#include <Bnd_Box.hxx>
+#include <Standard_Failure.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopTools_ListOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "brep/clip_retries.hpp"
+#include "brep/occ_progress.hpp"
+#include "brep/trim_phases.hpp"
+#include "steady/brep/brep_io.hpp"
+
+namespace steady::trim {
+
+// ---- helpers shared by the phases ----------------------------------------------------------------------------
+
+TopoDS_Shape compound_of(const std::vector<TopoDS_Shape>& shapes) {
+  TopoDS_Compound c;
+  const BRep_Builder b;
+  b.MakeCompound(c);
+  for (const TopoDS_Shape& s : shapes) b.Add(c, s);
+  return c;
+}
+
+TopoDS_Shape text_copy(const TopoDS_Shape& shape) { return brep_from_text(brep_to_text(shape), "body"); }
+
+TopoDS_Shape run_boolean(BRepAlgoAPI_BooleanOperation& op, const TopoDS_Shape& a, const TopoDS_Shape& b,
+                         const char* what, Progress& progress) {
+  TopTools_ListOfShape args, tools;
+  args.Append(a);
+  tools.Append(b);
+  op.SetArguments(args);
+  op.SetTools(tools);
+  op.SetNonDestructive(Standard_True);
+  op.SetRunParallel(Standard_True);
+  OccProgress occ(progress);
+  op.Build(occ.range());
+  occ.finish();  // a Boolean stopped by a cancel is not a failed one
+  if (!op.IsDone() || op.HasErrors()) {
+    std::ostringstream os;
+    os << "OpenCASCADE's " << what << " of the boundary hubs failed";
+    if (op.HasErrors()) {
+      os << ": ";
+      op.DumpErrors(os);
+    }
+    throw std::runtime_error(os.str());
+  }
+  return op.Shape();
+}
+
+std::optional<TopoDS_Shape> try_boolean(BRepAlgoAPI_BooleanOperation& op, const TopoDS_Shape& a, const TopoDS_Shape& b,
+                                        const char* what, Progress& progress) {
+  try {
+    return run_boolean(op, a, b, what, progress);
+  } catch (const Cancelled&) {
+    throw;
+  } catch (const std::runtime_error&) {
+    return std::nullopt;
+  } catch (const Standard_Failure&) {
+    return std::nullopt;
+  }
+}
+
+std::int64_t free_edges(const std::vector<TopoDS_Face>& a, const std::vector<TopoDS_Face>& b,
+                        std::vector<TopoDS_Shape>* open_faces) {
+  std::unordered_map<const void*, int> uses;
+  for (const auto* faces : {&a, &b})
+    for (const TopoDS_Face& face : *faces)
+      for (TopExp_Explorer x(face, TopAbs_EDGE); x.More(); x.Next())
+        if (!BRep_Tool::Degenerated(TopoDS::Edge(x.Current()))) ++uses[x.Current().TShape().get()];
+  std::int64_t open = 0;
+  for (const auto& [edge, count] : uses) open += count == 1;
+  if (open_faces)
+    for (const auto* faces : {&a, &b})
+      for (const TopoDS_Face& face : *faces)
+        for (TopExp_Explorer x(face, TopAbs_EDGE); x.More(); x.Next())
+          if (uses[x.Current().TShape().get()] == 1) {
+            open_faces->push_back(face);
+            break;
+          }
+  return open;
+}
+
+std::unordered_set<const void*> face_set(const TopoDS_Shape& shape) {
+  std::unordered_set<const void*> faces;
+  for (TopExp_Explorer x(shape, TopAbs_FACE); x.More(); x.Next()) faces.insert(x.Current().TShape().get());
+  return faces;
+}
+
+void report(const TrimOptions& options, const std::string& message) {
+  if (options.report) options.report(message);
+}
+
+// ---- the first Common of every cluster -----------------------------------------------------------------------
+
+namespace {
+
+// With a skin: a clipped cluster's cut faces (on the inner boundary), and whether they can be holes in it.
+void find_cut_faces(const ClipContext& c, BRepAlgoAPI_BooleanOperation& op, const TopoDS_Shape& tool_passed,
+                    std::size_t cluster, ClusterClips& clips) {
+  if (!c.unite) return;
+  TopTools_IndexedMapOfShape tool_faces;
+  TopExp::MapShapes(tool_passed, TopAbs_FACE, tool_faces);
+  clips.cut_faces[cluster] = cut_faces(op, tool_faces, clips.results[cluster]);
+  clips.as_holes[cluster] = cut_faces_are_holes(clips.results[cluster], clips.cut_faces[cluster]);
+}
+
+}  // namespace
+
+ClusterClips clip_clusters(const ClipContext& c, CutDisks& disks, Progress& progress) {
+  const std::size_t count = c.clusters.faces.size();
+  ClusterClips clips;
+  if (c.options.policy == TrimPolicy::Clip) {
+    clips.tool = c.bodies.skin ? &c.bodies.skin->inner : &c.bodies.body.solid();
+    clips.what = c.bodies.skin ? "Common with the inner body" : "Common with the body";
+  }
+  clips.tool_text = clips.tool ? brep_to_text(*clips.tool) : std::string();
+  clips.results.resize(count);
+  clips.unclipped.resize(count);
+  clips.failed.assign(count, 0);
+  clips.cut_faces.resize(count);
+  clips.as_holes.assign(count, 0);
+  // Each cluster's share of the progress is its number of faces; a cancel stops the clusters not yet started,
+  // and the running Booleans at their next check.
+  tbb::parallel_for(std::size_t(0), count, [&](std::size_t k) {
+    Progress cluster(progress, static_cast<std::int64_t>(c.clusters.faces[k].size()), 10);
+    cluster.check();
+    const TopoDS_Shape solid = solids_from_faces(c.clusters.faces[k]);
+    clips.unclipped[k] = solid;
+    if (!clips.tool) {
+      clips.results[k] = solid;
+      cluster.finish();
+      return;
+    }
+    cluster.advance(1);
+    // Each cluster is clipped against its own copy of the body (the Booleans share no mutable data), read back from
+    // BREP text: against the in-memory shape OpenCASCADE's Common misclassified untouched disks that the text copy
+    // clips right, and took twice as long (docs/brep.md).
+    const TopoDS_Shape copy = brep_from_text(clips.tool_text, "body");
+    BRepAlgoAPI_Common op;
+    Progress boolean(cluster, 9);
+    const std::optional<TopoDS_Shape> clipped = try_boolean(op, solid, copy, clips.what, boolean);
+    const int cluster_id = static_cast<int>(k);
+    if (!clipped || (c.options.verify_booleans && !disks.cluster_result_ok(op, *clipped, cluster_id, 0))) {
+      clips.failed[k] = 1;  // tried again (retry_failed_clusters)
+    } else {
+      clips.results[k] = *clipped;
+      disks.track(op, clips.results[k], cluster_id);
+      find_cut_faces(c, op, copy, k, clips);
+    }
+    cluster.finish();
+  });
+  progress.finish();
+  return clips;
+}
+
+// ---- the retries ---------------------------------------------------------------------------------------------
+
+namespace {
+
+// The failed clusters' hubs (and their beams) built again with the spheres laid out the other way: only those, a
+// crowded hub's core in the other layout can take minutes. Both layouts share the cut circles.
+std::vector<std::vector<TopoDS_Face>> second_layout_faces(const ClipContext& c, SeamPreference seams, CutEdges& cuts,
+                                                          const ClusterClips& clips, CutDisks& disks,
+                                                          BrepPieces& second) {
+  const FlatLattice& f = c.f;
+  std::unordered_map<std::int64_t, std::size_t> vertices_before;
+  for (const auto& [beam, circle] : cuts) vertices_before[beam] = circle.vertices.size();
+  BrepSelection other;
+  other.balls.assign(f.ball_count(), 0);
+  other.beams.assign(f.beam_count(), 0);
+  for (std::int64_t i = 0; i < f.ball_count(); ++i)
+    other.balls[i] = c.roles.band[i] && clips.failed[c.clusters.of_ball(c.plan, i)];
+  for (std::int64_t e = 0; e < f.beam_count(); ++e)
+    other.beams[e] = c.roles.band_beams[e] && (other.balls[f.beams[e].a] || other.balls[f.beams[e].b]);
+  other.split = c.plan.split;
+  other.cut_fractions = c.plan.cut_fractions;
+  other.seams = seams == SeamPreference::FewestCrossings ? SeamPreference::MostCrossings : SeamPreference::FewestCrossings;
+  second = build_brep_pieces(f, other, cuts);
+  for (const auto& [beam, count] : vertices_before)
+    if (cuts.at(beam).vertices.size() != count)
+      throw std::runtime_error("trim: the second layout of the boundary hubs changed a shared cut circle");
+  std::vector<std::vector<TopoDS_Face>> faces(c.clusters.faces.size());
+  std::unordered_map<const void*, int> cluster_of_face;
+  for (std::size_t k = 0; k < second.faces.size(); ++k) {
+    const int cluster = c.clusters.of_ball(c.plan, second.face_owner[k]);
+    faces[cluster].push_back(second.faces[k]);
+    cluster_of_face.emplace(second.faces[k].TShape().get(), cluster);
+  }
+  disks.add(second, 1, cluster_of_face, c.roles, c.plan, &clips.failed, c.frustums);
+  return faces;
+}
+
+struct RetryCounts {
+  std::atomic<std::int64_t> retried{0}, relaid{0}, turned{0}, fuzzy{0};
+};
+
+// One failed cluster through clip_retries(); false when every attempt failed.
+bool retry_cluster(const ClipContext& c, std::size_t k, const TopoDS_Shape (&layouts)[2], ClusterClips& clips,
+                   CutDisks& disks, RetryCounts& counts, Progress& progress) {
+  Bnd_Box box;
+  BRepBndLib::Add(layouts[0], box);
+  const double size = std::sqrt(box.SquareExtent());
+  const gp_Pnt center((box.CornerMin().XYZ() + box.CornerMax().XYZ()) / 2.0);
+  const int cluster = static_cast<int>(k);
+  for (const ClipAttempt& attempt : clip_retries()) {
+    if (attempt.layout == 0 && attempt.frame == 0 && attempt.fuzzy == 0.0) continue;  // the first pass
+    progress.check();
+    const TopLoc_Location frame = turned_frame(attempt.frame, center);
+    BRepAlgoAPI_Common op;
+    if (attempt.fuzzy > 0.0) op.SetFuzzyValue(attempt.fuzzy * size);
+    // The cluster's disks of one layout take part in the checks and the assembly, the other's do not.
+    disks.use_layout(cluster, attempt.layout);
+    const TopoDS_Shape tool_copy = brep_from_text(clips.tool_text, "body").Moved(frame);
+    const std::optional<TopoDS_Shape> clipped =
+        try_boolean(op, layouts[attempt.layout].Moved(frame), tool_copy, clips.what, no_progress());
+    if (!clipped) continue;
+    clips.results[k] = clipped->Moved(frame.Inverted());
+    if (!disks.cluster_result_ok(op, clips.results[k], cluster, attempt.layout, frame)) continue;
+    disks.track(op, clips.results[k], cluster, frame);
+    find_cut_faces(c, op, tool_copy, k, clips);
+    clips.unclipped[k] = layouts[attempt.layout];
+    ++counts.retried;
+    counts.relaid += attempt.layout == 1;
+    counts.turned += attempt.frame != 0;
+    counts.fuzzy += attempt.fuzzy > 0.0;
+    return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+void retry_failed_clusters(const ClipContext& c, SeamPreference seams, CutEdges& cuts, ClusterClips& clips,
+                           CutDisks& disks, BrepPieces& second_layout, TrimStats& stats, Progress& progress) {
+  if (std::none_of(clips.failed.begin(), clips.failed.end(), [](char x) { return x; })) return;
+  progress.check();
+  const std::vector<std::vector<TopoDS_Face>> other_faces =
+      second_layout_faces(c, seams, cuts, clips, disks, second_layout);
+  RetryCounts counts;
+  const std::size_t count = c.clusters.faces.size();
+  tbb::parallel_for(std::size_t(0), count, [&](std::size_t k) {
+    if (!clips.failed[k]) return;
+    progress.check();
+    const TopoDS_Shape layouts[2] = {clips.unclipped[k], solids_from_faces(other_faces[k])};
+    if (retry_cluster(c, k, layouts, clips, disks, counts, progress)) return;
+    if (!c.options.dump_directory.empty()) {  // both layouts and the tool, for study
+      const std::string stem = c.options.dump_directory + "/cluster" + std::to_string(k);
+      std::ofstream(stem + "_layout0.brep") << brep_to_text(layouts[0]);
+      std::ofstream(stem + "_layout1.brep") << brep_to_text(layouts[1]);
+      std::ofstream(stem + "_tool.brep") << clips.tool_text;
+    }
+    throw std::runtime_error("trim: the Common of boundary cluster " + std::to_string(k) + " (of " +
+                             std::to_string(count) +
+                             ") misclassified a disk it did not touch, or produced invalid faces, with both layouts "
+                             "of its spheres, in turned frames and with fuzzy values");
+  });
+  stats.retried_clusters = counts.retried;
+  stats.relaid_clusters = counts.relaid;
+  stats.turned_clusters = counts.turned;
+  stats.fuzzy_clusters = counts.fuzzy;
+}
+
+}  // namespace steady::trim
