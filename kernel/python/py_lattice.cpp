@@ -51,8 +51,12 @@ steady::NodeId node_id(std::int64_t i, std::int64_t j, std::int64_t k, int n) { 
 
 }  // namespace
 
+namespace {
+void bind_lattice_contents(py::class_<Lattice>& cls);
+}  // namespace
+
 void bind_lattice(py::module_& m) {
-  py::class_<Lattice>(m, "Lattice", R"doc(
+  py::class_<Lattice> cls(m, "Lattice", R"doc(
 A steady brick lattice: template balls and beam patterns placed by G o W^k o V^j o U^i for every group
 (i, j, k) of the counts (u, v, w). Nothing is stored per element; balls() and beams() list them in a
 stable order, and every query returns indices into those lists.
@@ -61,7 +65,8 @@ nodes: list of ((x, y, z), radius), the template balls.
 beams: list of (n1, di, dj, dk, n2) joining ball n1 of group (i, j, k) to ball n2 of group
        (i+di, j+dj, k+dk), or (n1, di, dj, dk, n2, r1, r2) with the beam's own end radii in template units.
 counts: (u, v, w). U, V, W: the steps between neighbouring groups. G: the placement (default identity).
-omitted: optional list of (i, j, k, n) nodes left out, with their beams.)doc")
+omitted: optional list of (i, j, k, n) nodes left out, with their beams.)doc");
+  cls
       .def(py::init([](py::handle nodes, py::handle beams, py::handle counts, const py::object& U,
                        const py::object& V, const py::object& W, const py::object& G, py::handle omitted,
                        const std::string& order) {
@@ -102,8 +107,15 @@ omitted: optional list of (i, j, k, n) nodes left out, with their beams.)doc")
           "A lattice from four frames (origin, x, y, z): base places group (0,0,0), end_u, end_v, end_w place "
           "groups (u-1,0,0), (0,v-1,0), (0,0,w-1).")
       .def_static("from_json", &steady::lattice_from_json, py::arg("text"))
-      .def("to_json", &steady::lattice_to_json, py::arg("indent") = 2)
-      .def(
+      .def("to_json", &steady::lattice_to_json, py::arg("indent") = 2);
+  bind_lattice_contents(cls);
+}
+
+namespace {
+
+// What a lattice holds: its elements in bulk and one by one, its template and layout, its indices.
+void bind_lattice_contents(py::class_<Lattice>& cls) {
+  cls.def(
           "balls",
           [](const Lattice& lat) {
             steady::require_memory(static_cast<std::uint64_t>(lat.ball_count()) * 32u, "balls()");
@@ -221,5 +233,7 @@ omitted: optional list of (i, j, k, n) nodes left out, with their beams.)doc")
                std::to_string(l.beam_count()) + " beams>";
       });
 }
+
+}  // namespace
 
 }  // namespace steadypy

@@ -174,7 +174,10 @@ PyFilter make_stencil(py::handle mask) {
 
 }  // namespace
 
-void bind_queries(py::module_& m) {
+namespace {
+
+// The queries of a Lattice: ball interference, points, distances, rays, voxels.
+void bind_lattice_queries(py::module_& m) {
   auto lattice = py::reinterpret_borrow<py::class_<Lattice>>(m.attr("Lattice"));
   lattice
       .def(
@@ -252,6 +255,10 @@ void bind_queries(py::module_& m) {
           },
           py::arg("filter"), py::arg("method") = "auto", "This lattice seen through a node filter.");
 
+}
+
+// Node filters and their combinations.
+void bind_filters(py::module_& m) {
   py::class_<PyFilter>(m, "Filter", R"doc(
 A node filter: which nodes of a lattice exist. Combine with & (and), | (or), ~ (not). A filtered lattice
 keeps a ball whose node passes and a beam whose two nodes both pass.)doc")
@@ -304,6 +311,10 @@ keeps a ball whose node passes and a beam whose two nodes both pass.)doc")
       "Keep a node whose center is inside a body: B-rep text (OpenCASCADE format, e.g. Part shape "
       "exportBrepToString(); boundary counts inside) or a callable taking an N x 3 array and returning N bools.");
 
+}
+
+// A lattice seen through a filter, with the same queries.
+void bind_filtered_lattice(py::module_& m) {
   py::class_<FilteredLattice, std::shared_ptr<FilteredLattice>>(m, "FilteredLattice", R"doc(
 A lattice seen through a node filter. Indices are never renumbered: queries return indices into the
 unfiltered lattice's balls() and beams(), and ball_mask() / beam_mask() say which exist (a dense
@@ -372,6 +383,14 @@ numbering is the running count of a mask, e.g. numpy.flatnonzero).)doc")
         return "<FilteredLattice of " + std::to_string(f.lattice().ball_count()) + " balls, " +
                (f.filter() ? f.filter()->describe() : std::string("no filter")) + ">";
       });
+}
+
+}  // namespace
+
+void bind_queries(py::module_& m) {
+  bind_lattice_queries(m);
+  bind_filters(m);
+  bind_filtered_lattice(m);
 }
 
 }  // namespace steadypy

@@ -40,6 +40,10 @@ py::tuple frame_tuple(const steady::Frame& f) {
 
 }  // namespace
 
+namespace {
+void bind_similarity2(py::module_& m);
+}  // namespace
+
 void bind_similarity(py::module_& m) {
   py::class_<Similarity>(m, "Similarity", R"doc(
 An orientation-preserving similarity p -> s R p + t of 3D space (translation, rotation, screw, dilation
@@ -166,6 +170,13 @@ more than a half turn keeps its winding. S * T applies T first, then S.)doc")
            py::arg("other"), py::arg("tol") = 1e-9)
       .def("__repr__", [](const Similarity& s) { return "<Similarity " + s.describe() + ">"; });
 
+  bind_similarity2(m);
+}
+
+namespace {
+
+// The planar similarity z -> a z + b.
+void bind_similarity2(py::module_& m) {
   py::class_<Similarity2>(m, "Similarity2", "An orientation-preserving similarity of the plane, z -> a z + b.")
       .def(py::init<>())
       .def_static("translation", [](py::handle v) { return Similarity2::translation(to_vec2(v, "v")); }, py::arg("v"))
@@ -201,5 +212,7 @@ more than a half turn keeps its winding. S * T applies T first, then S.)doc")
         return py::make_tuple(f.x, f.y);
       });
 }
+
+}  // namespace
 
 }  // namespace steadypy
