@@ -494,305 +494,328 @@ void make_ring_edges(const BRep_Builder& b, Ring& ring) {
 
 }  // namespace
 
+namespace {
+
 // Work units of build_brep_pieces: laying out a distinct hub shape (or building its core) costs about as much as
 // this many spherical faces; a spherical face about two conical ones.
 constexpr std::int64_t kShapeUnits = 20;
 constexpr std::int64_t kHubUnits = 2;
 constexpr std::int64_t kBeamUnits = 1;
 
-BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selection, CutEdges& cut_edges,
-                             Progress& progress) {
+// Everything one build of pieces works on; its steps below fill it in order.
+struct PieceBuild {
+  const FlatLattice& f;
+  const BrepSelection& selection;
+  Progress& progress;
+  std::vector<BeamFrustum> frustums;
+  std::vector<char> ball_built;      // per ball
+  std::vector<BeamWork> beams;       // per beam
+  std::vector<HubWork> hubs;         // per built ball
+  std::vector<HubGeometry> geometry; // per hub
+  HubCatalog catalog;                // the hubs' distinct shapes
+  std::vector<ShapeWork> shapes;     // per distinct shape: its sphere layout, or its core
+  const BRep_Builder builder;
+};
+
+void check_selection(const FlatLattice& f, const BrepSelection& selection) {
   if (static_cast<std::int64_t>(selection.balls.size()) != f.ball_count() ||
       static_cast<std::int64_t>(selection.beams.size()) != f.beam_count() ||
       (!selection.open_cuts.empty() && static_cast<std::int64_t>(selection.open_cuts.size()) != f.beam_count()) ||
       (!selection.split.empty() && static_cast<std::int64_t>(selection.split.size()) != f.beam_count()))
     fail_input("selection", "needs one flag per ball and per beam");
-  const auto start = std::chrono::steady_clock::now();
-  {
-    std::uint64_t faces = 0;
-    for (char b : selection.balls) faces += b ? 1 : 0;
-    for (char b : selection.beams) faces += b ? 2 : 0;
-    require_memory(faces * kBytesPerFace, "the B-rep of " + std::to_string(faces) + " faces");
-  }
-  BrepPieces out;
-  const std::vector<BeamFrustum> frustums = selected_frustums(f, selection);
-  const std::vector<char> absorbed = absorbed_balls(f, frustums);
-  std::vector<char> ball_built(f.ball_count());
-  for (std::int64_t i = 0; i < f.ball_count(); ++i) ball_built[i] = selection.balls[i] && !absorbed[i];
+  std::uint64_t faces = 0;
+  for (char b : selection.balls) faces += b ? 1 : 0;
+  for (char b : selection.beams) faces += b ? 2 : 0;
+  require_memory(faces * kBytesPerFace, "the B-rep of " + std::to_string(faces) + " faces");
+}
 
-  std::vector<BeamWork> beams(f.beam_count());
+// Which balls are built, and how each beam is: whole, one half, two halves meeting at the cut, or not at all.
+void classify_beams(PieceBuild& b) {
+  const FlatLattice& f = b.f;
+  const std::vector<char> absorbed = absorbed_balls(f, b.frustums);
+  b.ball_built.resize(f.ball_count());
+  for (std::int64_t i = 0; i < f.ball_count(); ++i) b.ball_built[i] = b.selection.balls[i] && !absorbed[i];
+  b.beams.resize(f.beam_count());
   for (std::int64_t e = 0; e < f.beam_count(); ++e) {
-    if (!selection.beams[e] || !frustums[e].exists) continue;
-    const bool a = ball_built[f.beams[e].a], b = ball_built[f.beams[e].b];
-    const bool split = !selection.split.empty() && selection.split[e];
-    beams[e].kind = a && b ? (split ? BeamKind::Split : BeamKind::Whole)
-                           : a ? BeamKind::HalfA : b ? BeamKind::HalfB : BeamKind::None;
+    if (!b.selection.beams[e] || !b.frustums[e].exists) continue;
+    const bool a = b.ball_built[f.beams[e].a], c = b.ball_built[f.beams[e].b];
+    const bool split = !b.selection.split.empty() && b.selection.split[e];
+    b.beams[e].kind = a && c ? (split ? BeamKind::Split : BeamKind::Whole)
+                             : a ? BeamKind::HalfA : c ? BeamKind::HalfB : BeamKind::None;
   }
-  // Hubs, their geometry, and whether their exit circles keep apart (clean) or overlap (a core).
-  std::vector<HubWork> hubs;
-  std::vector<HubGeometry> geometry;
+}
+
+// Hubs, their geometry, and whether their exit circles keep apart (clean) or overlap (a core).
+void gather_hubs(PieceBuild& b) {
+  const FlatLattice& f = b.f;
   for (std::int64_t i = 0; i < f.ball_count(); ++i) {
-    if (!ball_built[i]) continue;
+    if (!b.ball_built[i]) continue;
     HubWork h;
     h.ball = i;
-    HubGeometry g = hub_geometry(f, frustums, i, [&](std::int64_t e) { return beams[e].kind != BeamKind::None; },
+    HubGeometry g = hub_geometry(f, b.frustums, i, [&](std::int64_t e) { return b.beams[e].kind != BeamKind::None; },
                                  h.stumps);
     h.kind = g.kind;
     for (std::size_t s = 0; s < h.stumps.size(); ++s) {
       const auto [e, end] = h.stumps[s];
-      EndCircle& ec = beams[e].end[end];
-      ec.hub = static_cast<std::int64_t>(hubs.size());
+      EndCircle& ec = b.beams[e].end[end];
+      ec.hub = static_cast<std::int64_t>(b.hubs.size());
       ec.slot = static_cast<int>(s);
       ec.circle = g.exits[s];
-      ec.axial = end == 0 ? frustums[e].exit_a : frustums[e].exit_b;
+      ec.axial = end == 0 ? b.frustums[e].exit_a : b.frustums[e].exit_b;
     }
-    hubs.push_back(std::move(h));
-    geometry.push_back(std::move(g));
+    b.hubs.push_back(std::move(h));
+    b.geometry.push_back(std::move(g));
   }
-  progress.check();
-  const HubCatalog catalog = catalog_hubs(geometry);
-  std::vector<ShapeWork> shapes(catalog.shapes.size());
-  {
-    std::int64_t built_beams = 0;
-    for (const BeamWork& w : beams) built_beams += w.kind != BeamKind::None;
-    progress.set_total(kShapeUnits * static_cast<std::int64_t>(shapes.size()) +
-                       kHubUnits * static_cast<std::int64_t>(hubs.size()) + kBeamUnits * built_beams + 1);
-  }
-  tbb::parallel_for(std::size_t(0), shapes.size(), [&](std::size_t s) {
-    progress.check();
-    ShapeWork& w = shapes[s];
-    const std::int64_t rep = catalog.representatives[s];
-    if (hubs[rep].kind == 0) {
-      w.layout = layout_sphere(catalog.shapes[s], selection.seams);
+}
+
+// Each distinct hub shape once: a clean one's sphere layout and the pcurves of its circles, a crowded one's core.
+void lay_out_shapes(PieceBuild& b) {
+  b.progress.check();
+  b.catalog = catalog_hubs(b.geometry);
+  b.shapes.resize(b.catalog.shapes.size());
+  std::int64_t built_beams = 0;
+  for (const BeamWork& w : b.beams) built_beams += w.kind != BeamKind::None;
+  b.progress.set_total(kShapeUnits * static_cast<std::int64_t>(b.shapes.size()) +
+                       kHubUnits * static_cast<std::int64_t>(b.hubs.size()) + kBeamUnits * built_beams + 1);
+  tbb::parallel_for(std::size_t(0), b.shapes.size(), [&](std::size_t s) {
+    b.progress.check();
+    ShapeWork& w = b.shapes[s];
+    const std::int64_t rep = b.catalog.representatives[s];
+    if (b.hubs[rep].kind == 0) {
+      w.layout = layout_sphere(b.catalog.shapes[s], b.selection.seams);
       w.pcurves.resize(w.layout.circles.size());
       for (std::size_t c = 0; c < w.layout.circles.size(); ++c)
         for (const CircleArc& arc : w.layout.circles[c].arcs) {
           w.pcurves[c].push_back(approximate_arc_pcurve(w.layout, static_cast<int>(c), arc));
           w.max_error = std::max(w.max_error, w.pcurves[c].back().max_error);
         }
-      progress.advance(kShapeUnits);
+      b.progress.advance(kShapeUnits);
       return;
     }
-    const std::vector<CoreStump> stumps = core_stumps(catalog.shapes[s], geometry[rep].extras);
-    const CoreKind kind = core_kind(hubs[rep].kind);
+    const std::vector<CoreStump> stumps = core_stumps(b.catalog.shapes[s], b.geometry[rep].extras);
+    const CoreKind kind = core_kind(b.hubs[rep].kind);
     w.core = build_hub_core(stumps, kind, place_collars(stumps, kind, kMaxCollarPosition));
-    progress.advance(kShapeUnits);
+    b.progress.advance(kShapeUnits);
   });
-  out.stats.layout_seconds = seconds_since(start);
-  const auto topology_start = std::chrono::steady_clock::now();
-  const BRep_Builder builder;
+}
 
-  // Core hubs: place a copy of their core, and read their collars as fixed rings.
-  tbb::parallel_for(std::size_t(0), hubs.size(), [&](std::size_t h) {
-    HubWork& hub = hubs[h];
-    if (hub.kind == 0) return;
-    progress.check();
-    const HubPlacement& place = catalog.placements[h];
-    const HubCore& core = *shapes[place.shape].core;
-    const Ball& ball = f.balls[hub.ball];
-    BRepBuilderAPI_Transform copy(core.faces, placement_transform(ball, place.rotation), Standard_True);
-    ShapeFix_ShapeTolerance().LimitTolerance(copy.Shape(), kBrepTolerance, 0.0);
-    for (TopExp_Explorer x(copy.Shape(), TopAbs_FACE); x.More(); x.Next()) hub.faces.push_back(TopoDS::Face(x.Current()));
-    for (std::size_t s = 0; s < hub.stumps.size(); ++s) {
-      EndCircle& ec = beams[hub.stumps[s].first].end[hub.stumps[s].second];
-      const TopoDS_Edge collar = TopoDS::Edge(copy.ModifiedShape(core.collars[s]));
-      Standard_Real first, last;
-      Handle(Geom_Circle) curve = Handle(Geom_Circle)::DownCast(BRep_Tool::Curve(collar, first, last));
-      if (curve.IsNull()) throw std::runtime_error("brep builder: a core's collar is not a circle");
-      TopoDS_Vertex v;
-      for (TopExp_Explorer x(collar, TopAbs_VERTEX); x.More(); x.Next()) v = TopoDS::Vertex(x.Current());
-      ring_from_edges(ec, curve, {first}, {v}, {collar});
-      ec.axial = core.collar_position[s] * ball.radius;
-      const BeamFrustum& fr = frustums[hub.stumps[s].first];
-      const double to_cut = hub.stumps[s].second == 0 ? fr.cut_position() : fr.cone.length - fr.cut_position();
-      if (!(ec.axial < to_cut * (1.0 - 1e-9)))
-        fail_input("hub", "ball " + std::to_string(hub.ball) + ": beam " + std::to_string(hub.stumps[s].first) +
-                              " is too short for the collar its crowded hub needs (collar at " +
-                              std::to_string(ec.axial) + ", cut at " + std::to_string(to_cut) + ")");
-    }
-  });
+// Core hubs: a copy of their core in place, and their collars read as fixed rings.
+void place_core(PieceBuild& b, HubWork& hub, std::size_t h) {
+  const HubPlacement& place = b.catalog.placements[h];
+  const HubCore& core = *b.shapes[place.shape].core;
+  const Ball& ball = b.f.balls[hub.ball];
+  BRepBuilderAPI_Transform copy(core.faces, placement_transform(ball, place.rotation), Standard_True);
+  ShapeFix_ShapeTolerance().LimitTolerance(copy.Shape(), kBrepTolerance, 0.0);
+  for (TopExp_Explorer x(copy.Shape(), TopAbs_FACE); x.More(); x.Next()) hub.faces.push_back(TopoDS::Face(x.Current()));
+  for (std::size_t s = 0; s < hub.stumps.size(); ++s) {
+    EndCircle& ec = b.beams[hub.stumps[s].first].end[hub.stumps[s].second];
+    const TopoDS_Edge collar = TopoDS::Edge(copy.ModifiedShape(core.collars[s]));
+    Standard_Real first, last;
+    Handle(Geom_Circle) curve = Handle(Geom_Circle)::DownCast(BRep_Tool::Curve(collar, first, last));
+    if (curve.IsNull()) throw std::runtime_error("brep builder: a core's collar is not a circle");
+    TopoDS_Vertex v;
+    for (TopExp_Explorer x(collar, TopAbs_VERTEX); x.More(); x.Next()) v = TopoDS::Vertex(x.Current());
+    ring_from_edges(ec, curve, {first}, {v}, {collar});
+    ec.axial = core.collar_position[s] * ball.radius;
+    const BeamFrustum& fr = b.frustums[hub.stumps[s].first];
+    const double to_cut = hub.stumps[s].second == 0 ? fr.cut_position() : fr.cone.length - fr.cut_position();
+    if (!(ec.axial < to_cut * (1.0 - 1e-9)))
+      fail_input("hub", "ball " + std::to_string(hub.ball) + ": beam " + std::to_string(hub.stumps[s].first) +
+                            " is too short for the collar its crowded hub needs (collar at " +
+                            std::to_string(ec.axial) + ", cut at " + std::to_string(to_cut) + ")");
+  }
+}
 
-  // Frames of clean hubs' circles, and each beam's plan: its rings from end a to end b and the seam of every
-  // segment. A seam must leave both rings of its segment at a vertex: free rings (clean exit circles, new cuts)
-  // take a vertex where it is needed; two fixed rings with no common vertex get a joint between them.
-  tbb::parallel_for(std::int64_t(0), f.beam_count(), [&](std::int64_t e) {
-    BeamWork& w = beams[e];
-    if (w.kind == BeamKind::None) return;
-    if (e % 64 == 0) progress.check();
-    for (EndCircle& ec : w.end) {
-      if (ec.hub < 0 || hubs[ec.hub].kind != 0) continue;
-      const HubPlacement& place = catalog.placements[ec.hub];
-      const CircleLayout& cl = shapes[place.shape].layout.circles[ec.slot];
-      const Vec3 n = ec.circle.normal, e1 = place.rotation * cl.e1;
-      ec.e1 = glm::normalize(e1 - glm::dot(e1, n) * n);
-      ec.e2 = glm::cross(n, ec.e1);
-      ec.params = cl.own_vertices;
+// A beam's plan: its rings from end a to end b and the seam of every segment. A seam must leave both rings of its
+// segment at a vertex: free rings (clean exit circles, new cuts) take a vertex where it is needed; two fixed rings
+// with no common vertex get a joint between them.
+void plan_beam(PieceBuild& b, std::int64_t e, const CutEdges& cut_edges) {
+  BeamWork& w = b.beams[e];
+  for (EndCircle& ec : w.end) {  // frames of clean hubs' circles
+    if (ec.hub < 0 || b.hubs[ec.hub].kind != 0) continue;
+    const HubPlacement& place = b.catalog.placements[ec.hub];
+    const CircleLayout& cl = b.shapes[place.shape].layout.circles[ec.slot];
+    const Vec3 n = ec.circle.normal, e1 = place.rotation * cl.e1;
+    ec.e1 = glm::normalize(e1 - glm::dot(e1, n) * n);
+    ec.e2 = glm::cross(n, ec.e1);
+    ec.params = cl.own_vertices;
+  }
+  const BeamFrustum& fr = b.frustums[e];
+  if (w.kind != BeamKind::Whole) {
+    auto found = cut_edges.find(e);
+    if (found != cut_edges.end()) {
+      const CutCircle& c = found->second;
+      ring_from_edges(w.cut, c.curve, c.params, c.vertices, c.edges);
+    } else {
+      const Circle cc = fr.cut_circle();
+      w.cut.circle = cc;
+      w.cut.e1 = any_perpendicular(cc.normal);
+      w.cut.e2 = glm::cross(cc.normal, w.cut.e1);
+      w.cut_is_new = true;
     }
-    const BeamFrustum& fr = frustums[e];
-    const bool cut = w.kind != BeamKind::Whole;
-    if (cut) {
-      auto found = cut_edges.find(e);
-      if (found != cut_edges.end()) {
-        const CutCircle& c = found->second;
-        ring_from_edges(w.cut, c.curve, c.params, c.vertices, c.edges);
-      } else {
-        const Circle cc = fr.cut_circle();
-        w.cut.circle = cc;
-        w.cut.e1 = any_perpendicular(cc.normal);
-        w.cut.e2 = glm::cross(cc.normal, w.cut.e1);
-        w.cut_is_new = true;
-      }
-    }
-    const Vec3 axis = fr.cone.axis;
-    switch (w.kind) {
-      case BeamKind::Whole: w.plan.rings = {0, 1}; break;
-      case BeamKind::HalfA: w.plan.rings = {0, 2}; break;
-      case BeamKind::HalfB: w.plan.rings = {2, 1}; break;
-      default: w.plan.rings = {0, 2, 1}; break;
-    }
-    auto flat = [&](const Vec3& d) { return glm::normalize(d - glm::dot(d, axis) * axis); };
-    std::vector<int> rings = w.plan.rings;
-    std::vector<int> planned;
-    std::vector<Vec3> seams;
-    for (std::size_t k = 0; k + 1 < rings.size(); ++k) {
-      Ring& p = w.ring(rings[k]);
-      Ring& q = w.ring(rings[k + 1]);
-      if (planned.empty()) planned.push_back(rings[k]);
-      if (p.fixed && q.fixed) {
-        // A common vertex, or a joint between them.
-        bool found = false;
-        for (double t : p.params) {
-          const Vec3 d = flat(p.direction_of(t));
-          if (!std::isnan(vertex_at(q, d))) {
-            seams.push_back(d);
-            found = true;
-            break;
-          }
+  }
+  const Vec3 axis = fr.cone.axis;
+  switch (w.kind) {
+    case BeamKind::Whole: w.plan.rings = {0, 1}; break;
+    case BeamKind::HalfA: w.plan.rings = {0, 2}; break;
+    case BeamKind::HalfB: w.plan.rings = {2, 1}; break;
+    default: w.plan.rings = {0, 2, 1}; break;
+  }
+  auto flat = [&](const Vec3& d) { return glm::normalize(d - glm::dot(d, axis) * axis); };
+  std::vector<int> rings = w.plan.rings;
+  std::vector<int> planned;
+  std::vector<Vec3> seams;
+  for (std::size_t k = 0; k + 1 < rings.size(); ++k) {
+    Ring& p = w.ring(rings[k]);
+    Ring& q = w.ring(rings[k + 1]);
+    if (planned.empty()) planned.push_back(rings[k]);
+    if (p.fixed && q.fixed) {
+      // A common vertex, or a joint between them.
+      bool found = false;
+      for (double t : p.params) {
+        const Vec3 d = flat(p.direction_of(t));
+        if (!std::isnan(vertex_at(q, d))) {
+          seams.push_back(d);
+          found = true;
+          break;
         }
-        if (!found) {
-          Ring joint;
-          w.joints.push_back(joint);
-          const int id = 3 + static_cast<int>(w.joints.size()) - 1;
-          seams.push_back(flat(p.direction_of(p.params[0])));
-          seams.push_back(flat(q.direction_of(q.params[0])));
-          planned.push_back(id);
-        }
-      } else if (p.fixed || (!q.fixed && !p.params.empty())) {
-        const Vec3 d = flat(p.direction_of(p.params[0]));
-        seams.push_back(d);
-        add_vertex(q, d);
-      } else {
-        if (q.params.empty()) throw std::logic_error("brep builder: a segment between two rings with no vertex");
-        const Vec3 d = flat(q.direction_of(q.params[0]));
-        seams.push_back(d);
-        add_vertex(p, d);
       }
-      planned.push_back(rings[k + 1]);
+      if (!found) {
+        Ring joint;
+        w.joints.push_back(joint);
+        const int id = 3 + static_cast<int>(w.joints.size()) - 1;
+        seams.push_back(flat(p.direction_of(p.params[0])));
+        seams.push_back(flat(q.direction_of(q.params[0])));
+        planned.push_back(id);
+      }
+    } else if (p.fixed || (!q.fixed && !p.params.empty())) {
+      const Vec3 d = flat(p.direction_of(p.params[0]));
+      seams.push_back(d);
+      add_vertex(q, d);
+    } else {
+      if (q.params.empty()) throw std::logic_error("brep builder: a segment between two rings with no vertex");
+      const Vec3 d = flat(q.direction_of(q.params[0]));
+      seams.push_back(d);
+      add_vertex(p, d);
     }
-    w.plan.rings = planned;
-    w.plan.seam = seams;
-  });
+    planned.push_back(rings[k + 1]);
+  }
+  w.plan.rings = planned;
+  w.plan.seam = seams;
+}
 
-  // Spherical faces of clean hubs.
-  tbb::parallel_for(std::size_t(0), hubs.size(), [&](std::size_t h) {
-    progress.advance(kHubUnits);
-    if (hubs[h].kind != 0) return;
-    const HubPlacement& place = catalog.placements[h];
-    build_sphere_face(builder, f.balls[hubs[h].ball], place, shapes[place.shape], hubs[h], beams);
-  });
-  // Conical faces, cuts, joints, caps.
-  tbb::parallel_for(std::int64_t(0), f.beam_count(), [&](std::int64_t e) {
-    BeamWork& w = beams[e];
-    if (w.kind == BeamKind::None) return;
-    progress.advance(kBeamUnits);
-    const BeamFrustum& fr = frustums[e];
-    const double to_v = 1.0 / fr.cone.cos_phi;
-    const Vec3 axis = fr.cone.axis;
-    // Cone position v of each ring (the cone is anchored at the exit circle of node a).
-    auto v_of = [&](int id) {
-      if (id == 0) return (w.end[0].axial - fr.exit_a) * to_v;
-      if (id == 1) return (fr.cone.length - w.end[1].axial - fr.exit_a) * to_v;
-      if (id == 2) return (fr.cut_position() - fr.exit_a) * to_v;
-      return 0.0;
+// Cone position v of each of a beam's planned rings (the cone is anchored at the exit circle of node a); joints
+// half way between their neighbours. InvalidInput when the rings do not follow each other along the beam.
+std::vector<double> ring_positions(const BeamWork& w, const BeamFrustum& fr, std::int64_t e) {
+  const double to_v = 1.0 / fr.cone.cos_phi;
+  auto v_of = [&](int id) {
+    if (id == 0) return (w.end[0].axial - fr.exit_a) * to_v;
+    if (id == 1) return (fr.cone.length - w.end[1].axial - fr.exit_a) * to_v;
+    if (id == 2) return (fr.cut_position() - fr.exit_a) * to_v;
+    return 0.0;
+  };
+  std::vector<double> v(w.plan.rings.size());
+  for (std::size_t k = 0; k < v.size(); ++k) v[k] = v_of(w.plan.rings[k]);
+  for (std::size_t k = 0; k < v.size(); ++k)
+    if (w.plan.rings[k] >= 3) v[k] = 0.5 * (v[k - 1] + v[k + 1]);
+  for (std::size_t k = 0; k + 1 < v.size(); ++k)
+    if (!(v[k] < v[k + 1])) fail_input("beam", std::to_string(e) + " is too short for the rings its hubs put on it");
+  return v;
+}
+
+// New cuts and joints: circles on the cone with the planned vertices.
+void make_new_rings(const BRep_Builder& builder, BeamWork& w, const BeamFrustum& fr, const std::vector<double>& v) {
+  const Vec3 axis = fr.cone.axis;
+  for (std::size_t k = 0; k < w.plan.rings.size(); ++k) {
+    const int id = w.plan.rings[k];
+    if (!(id >= 3 || (id == 2 && w.cut_is_new))) continue;
+    Ring& r = w.ring(id);
+    const double x = fr.exit_a + v[k] * fr.cone.cos_phi;
+    r.circle = {fr.cone.a + x * axis, axis, fr.cone.radius_at(x)};
+    if (id >= 3) {
+      // A joint carries the seams of both its segments.
+      r.e1 = w.plan.seam[k - 1];
+      r.e2 = glm::cross(axis, r.e1);
+      r.params.clear();
+      add_vertex(r, w.plan.seam[k - 1]);
+      add_vertex(r, w.plan.seam[k]);
+    }
+    r.curve = new Geom_Circle(gp_Ax2(pnt(r.circle.center), dir(axis), dir(r.e1)), r.circle.radius);
+    make_ring_edges(builder, r);
+  }
+}
+
+// One conical face per segment between consecutive rings.
+void build_cone_faces(const BRep_Builder& builder, BeamWork& w, const BeamFrustum& fr, const std::vector<double>& v) {
+  const Vec3 axis = fr.cone.axis;
+  double cut_v = std::nan("");
+  for (std::size_t k = 0; k < w.plan.rings.size(); ++k)
+    if (w.plan.rings[k] == 2) cut_v = v[k];
+  for (std::size_t k = 0; k + 1 < w.plan.rings.size(); ++k) {
+    auto station = [&](std::size_t at) {
+      const Ring& r = w.ring(w.plan.rings[at]);
+      Station st;
+      st.edges = &r.edges;
+      st.params = &r.params;
+      st.seam_param = vertex_at(r, w.plan.seam[k]);
+      if (std::isnan(st.seam_param)) throw std::logic_error("brep builder: a seam misses its ring's vertices");
+      const std::size_t idx = std::find(r.params.begin(), r.params.end(), st.seam_param) - r.params.begin();
+      st.seam_vertex = r.vertices[idx];
+      st.sign = glm::dot(r.circle.normal, axis) > 0.0 ? 1.0 : -1.0;
+      st.v = v[at];
+      st.tolerance = r.tolerance;
+      return st;
     };
-    std::vector<double> v(w.plan.rings.size());
-    for (std::size_t k = 0; k < v.size(); ++k) v[k] = v_of(w.plan.rings[k]);
-    for (std::size_t k = 0; k < v.size(); ++k)
-      if (w.plan.rings[k] >= 3) v[k] = 0.5 * (v[k - 1] + v[k + 1]);
-    for (std::size_t k = 0; k + 1 < v.size(); ++k)
-      if (!(v[k] < v[k + 1]))
-        fail_input("beam", std::to_string(e) + " is too short for the rings its hubs put on it");
-    // New cuts and joints: circles on the cone with the planned vertices.
-    for (std::size_t k = 0; k < w.plan.rings.size(); ++k) {
-      const int id = w.plan.rings[k];
-      if (!(id >= 3 || (id == 2 && w.cut_is_new))) continue;
-      Ring& r = w.ring(id);
-      const double x = fr.exit_a + v[k] * fr.cone.cos_phi;
-      r.circle = {fr.cone.a + x * axis, axis, fr.cone.radius_at(x)};
-      if (id >= 3) {
-        // A joint carries the seams of both its segments.
-        r.e1 = w.plan.seam[k - 1];
-        r.e2 = glm::cross(axis, r.e1);
-        r.params.clear();
-        add_vertex(r, w.plan.seam[k - 1]);
-        add_vertex(r, w.plan.seam[k]);
-      }
-      r.curve = new Geom_Circle(gp_Ax2(pnt(r.circle.center), dir(axis), dir(r.e1)), r.circle.radius);
-      make_ring_edges(builder, r);
-    }
-    // One conical face per segment.
-    double cut_v = std::nan("");
-    for (std::size_t k = 0; k < w.plan.rings.size(); ++k)
-      if (w.plan.rings[k] == 2) cut_v = v[k];
-    for (std::size_t k = 0; k + 1 < w.plan.rings.size(); ++k) {
-      auto station = [&](std::size_t at) {
-        const Ring& r = w.ring(w.plan.rings[at]);
-        Station st;
-        st.edges = &r.edges;
-        st.params = &r.params;
-        st.seam_param = vertex_at(r, w.plan.seam[k]);
-        if (std::isnan(st.seam_param)) throw std::logic_error("brep builder: a seam misses its ring's vertices");
-        const std::size_t idx = std::find(r.params.begin(), r.params.end(), st.seam_param) - r.params.begin();
-        st.seam_vertex = r.vertices[idx];
-        st.sign = glm::dot(r.circle.normal, axis) > 0.0 ? 1.0 : -1.0;
-        st.v = v[at];
-        st.tolerance = r.tolerance;
-        return st;
-      };
-      TopoDS_Face face;
-      build_cone_face(builder, fr, w.plan.seam[k], station(k), station(k + 1), face);
-      w.cones.push_back(face);
-      w.cone_side.push_back(std::isnan(cut_v) ? 0 : (v[k + 1] <= cut_v ? 0 : 1));
-    }
-    if (w.kind != BeamKind::Whole && (selection.open_cuts.empty() || !selection.open_cuts[e])) {
-      const Ring& c = w.cut;
-      Handle(Geom_Plane) plane = new Geom_Plane(gp_Ax3(pnt(c.circle.center), dir(c.circle.normal), dir(c.e1)));
-      Handle(Geom2d_Circle) pcurve = new Geom2d_Circle(gp_Ax2d(gp_Pnt2d(0, 0), gp_Dir2d(1, 0)), c.circle.radius);
-      const bool side_a = w.kind == BeamKind::HalfA || w.kind == BeamKind::Split;
-      const bool side_b = w.kind == BeamKind::HalfB || w.kind == BeamKind::Split;
-      for (int side = 0; side < 2; ++side) {
-        if (!(side == 0 ? side_a : side_b)) continue;
-        TopoDS_Face& cap = w.cap[side];
-        builder.MakeFace(cap, plane, kBrepTolerance);
-        for (std::size_t k = 0; k < c.edges.size(); ++k) {
-          builder.UpdateEdge(c.edges[k], pcurve, cap, c.tolerance);
-          builder.Range(c.edges[k], c.params[k], c.edge_end(k));
-        }
-        TopoDS_Wire wire;
-        builder.MakeWire(wire);
-        // The cut's normal points along the beam (from a to b): its edges run counterclockwise around it.
-        const bool along = glm::dot(c.circle.normal, axis) > 0.0;
-        for (const TopoDS_Edge& edge : c.edges) builder.Add(wire, edge.Oriented(along ? TopAbs_FORWARD : TopAbs_REVERSED));
-        wire.Closed(true);
-        builder.Add(cap, wire);
-        // The disk faces away from the half it closes.
-        if (side == 1) cap.Orientation(TopAbs_REVERSED);
-      }
-    }
-  });
+    TopoDS_Face face;
+    build_cone_face(builder, fr, w.plan.seam[k], station(k), station(k + 1), face);
+    w.cones.push_back(face);
+    w.cone_side.push_back(std::isnan(cut_v) ? 0 : (v[k + 1] <= cut_v ? 0 : 1));
+  }
+}
 
-  progress.check();  // the last chance to stop: cut_edges changes below
-  for (const HubWork& h : hubs) {
+// The disks closing a cut beam's piece(s) at its cut.
+void build_cut_caps(const BRep_Builder& builder, BeamWork& w, const Vec3& axis) {
+  const Ring& c = w.cut;
+  Handle(Geom_Plane) plane = new Geom_Plane(gp_Ax3(pnt(c.circle.center), dir(c.circle.normal), dir(c.e1)));
+  Handle(Geom2d_Circle) pcurve = new Geom2d_Circle(gp_Ax2d(gp_Pnt2d(0, 0), gp_Dir2d(1, 0)), c.circle.radius);
+  const bool side_a = w.kind == BeamKind::HalfA || w.kind == BeamKind::Split;
+  const bool side_b = w.kind == BeamKind::HalfB || w.kind == BeamKind::Split;
+  for (int side = 0; side < 2; ++side) {
+    if (!(side == 0 ? side_a : side_b)) continue;
+    TopoDS_Face& cap = w.cap[side];
+    builder.MakeFace(cap, plane, kBrepTolerance);
+    for (std::size_t k = 0; k < c.edges.size(); ++k) {
+      builder.UpdateEdge(c.edges[k], pcurve, cap, c.tolerance);
+      builder.Range(c.edges[k], c.params[k], c.edge_end(k));
+    }
+    TopoDS_Wire wire;
+    builder.MakeWire(wire);
+    // The cut's normal points along the beam (from a to b): its edges run counterclockwise around it.
+    const bool along = glm::dot(c.circle.normal, axis) > 0.0;
+    for (const TopoDS_Edge& edge : c.edges) builder.Add(wire, edge.Oriented(along ? TopAbs_FORWARD : TopAbs_REVERSED));
+    wire.Closed(true);
+    builder.Add(cap, wire);
+    // The disk faces away from the half it closes.
+    if (side == 1) cap.Orientation(TopAbs_REVERSED);
+  }
+}
+
+// A beam's conical faces, new cuts and joints, and its caps (unless its cut stays open for gluing).
+void build_beam(PieceBuild& b, std::int64_t e) {
+  BeamWork& w = b.beams[e];
+  const BeamFrustum& fr = b.frustums[e];
+  const std::vector<double> v = ring_positions(w, fr, e);
+  make_new_rings(b.builder, w, fr, v);
+  build_cone_faces(b.builder, w, fr, v);
+  if (w.kind != BeamKind::Whole && (b.selection.open_cuts.empty() || !b.selection.open_cuts[e]))
+    build_cut_caps(b.builder, w, fr.cone.axis);
+}
+
+// The pieces, by owner; the new cut circles join `cut_edges`.
+BrepPieces collect_pieces(PieceBuild& b, CutEdges& cut_edges) {
+  const FlatLattice& f = b.f;
+  BrepPieces out;
+  for (const HubWork& h : b.hubs) {
     for (const TopoDS_Face& face : h.faces) {
       out.faces.push_back(face);
       out.face_owner.push_back(h.ball);
@@ -800,7 +823,7 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
     out.stats.core_hubs += h.kind != 0;
   }
   for (std::int64_t e = 0; e < f.beam_count(); ++e) {
-    BeamWork& w = beams[e];
+    BeamWork& w = b.beams[e];
     if (w.kind == BeamKind::None) continue;
     ++out.stats.beams;
     for (std::size_t k = 0; k < w.cones.size(); ++k) {
@@ -817,13 +840,52 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
     out.stats.joints += static_cast<std::int64_t>(w.joints.size());
     if (w.cut_is_new) cut_edges.emplace(e, CutCircle{w.cut.curve, w.cut.params, w.cut.vertices, w.cut.edges});
   }
-  out.stats.balls = static_cast<std::int64_t>(hubs.size());
+  out.stats.balls = static_cast<std::int64_t>(b.hubs.size());
   out.stats.faces = static_cast<std::int64_t>(out.faces.size());
-  out.stats.distinct_hubs = static_cast<std::int64_t>(shapes.size());
-  for (const ShapeWork& w : shapes) {
+  out.stats.distinct_hubs = static_cast<std::int64_t>(b.shapes.size());
+  for (const ShapeWork& w : b.shapes) {
     out.stats.distinct_cores += w.core != nullptr;
     for (const CircleLayout& c : w.layout.circles) out.stats.seam_crossing_circles += c.role != CircleRole::Inner;
   }
+  return out;
+}
+
+}  // namespace
+
+BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selection, CutEdges& cut_edges,
+                             Progress& progress) {
+  check_selection(f, selection);
+  const auto start = std::chrono::steady_clock::now();
+  PieceBuild b{f, selection, progress, selected_frustums(f, selection), {}, {}, {}, {}, {}, {}, BRep_Builder()};
+  classify_beams(b);
+  gather_hubs(b);
+  lay_out_shapes(b);
+  const double layout_seconds = seconds_since(start);
+  const auto topology_start = std::chrono::steady_clock::now();
+  tbb::parallel_for(std::size_t(0), b.hubs.size(), [&](std::size_t h) {
+    if (b.hubs[h].kind == 0) return;
+    progress.check();
+    place_core(b, b.hubs[h], h);
+  });
+  tbb::parallel_for(std::int64_t(0), f.beam_count(), [&](std::int64_t e) {
+    if (b.beams[e].kind == BeamKind::None) return;
+    if (e % 64 == 0) progress.check();
+    plan_beam(b, e, cut_edges);
+  });
+  tbb::parallel_for(std::size_t(0), b.hubs.size(), [&](std::size_t h) {  // spherical faces of clean hubs
+    progress.advance(kHubUnits);
+    if (b.hubs[h].kind != 0) return;
+    const HubPlacement& place = b.catalog.placements[h];
+    build_sphere_face(b.builder, f.balls[b.hubs[h].ball], place, b.shapes[place.shape], b.hubs[h], b.beams);
+  });
+  tbb::parallel_for(std::int64_t(0), f.beam_count(), [&](std::int64_t e) {
+    if (b.beams[e].kind == BeamKind::None) return;
+    progress.advance(kBeamUnits);
+    build_beam(b, e);
+  });
+  progress.check();  // the last chance to stop: cut_edges changes below
+  BrepPieces out = collect_pieces(b, cut_edges);
+  out.stats.layout_seconds = layout_seconds;
   out.stats.topology_seconds = seconds_since(topology_start);
   progress.finish();
   return out;
