@@ -9,7 +9,7 @@
 #include "steady/brep/brep_io.hpp"
 #include "steady/core/errors.hpp"
 #include "steady/lattice/flat_lattice.hpp"
-#include "steady/brep/sphere_layout.hpp"
+#include "brep/sphere_layout.hpp"
 #include "test_lattices.hpp"
 #include "test_support.hpp"
 

@@ -20,7 +20,7 @@
 #include <random>
 #include <sstream>
 
-#include "steady/brep/brep_builder.hpp"
+#include "brep/brep_pieces.hpp"
 #include "steady/brep/brep_io.hpp"
 #include "steady/core/errors.hpp"
 #include "steady/lattice/flat_lattice.hpp"

@@ -9,6 +9,5 @@
 #include "steady/brep/lattice_part.hpp"
 #include "steady/brep/skin.hpp"
 #include "steady/brep/solid_body.hpp"
-#include "steady/brep/sphere_layout.hpp"
 #include "steady/brep/step_assembly.hpp"
 #include "steady/brep/trim.hpp"

@@ -1,4 +1,4 @@
-#include "steady/brep/brep_builder.hpp"
+#include "brep/brep_pieces.hpp"
 
 #include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepBuilderAPI_Transform.hxx>

@@ -11,7 +11,7 @@
 
 #include "steady/core/ball.hpp"
 #include "steady/lattice/hub.hpp"
-#include "steady/brep/sphere_layout.hpp"
+#include "brep/sphere_layout.hpp"
 
 namespace steady {
 

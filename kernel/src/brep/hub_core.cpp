@@ -47,28 +47,21 @@
 #include <stdexcept>
 
 #include "lattice/circle_frames.hpp"
+#include "lattice/cone_envelope.hpp"
 #include "steady/lattice/convex_distance.hpp"
 #include "steady/core/errors.hpp"
-#include "steady/brep/sphere_layout.hpp"
+#include "brep/sphere_layout.hpp"
 
 namespace steady {
 
 namespace {
 
+using hull::kCollarClearance;
 constexpr double kTwoPi = 2.0 * M_PI;
 // Exact edges of a canonical core (unit ball): OpenCASCADE's confusion tolerance; copies scale it.
 constexpr double kCoreTolerance = 1e-7;
 // (u, v) accuracy of the approximated pcurves of conic and circle arcs (radians or unit-ball lengths).
 constexpr double kCorePcurveTolerance = 1e-9;
-// Vertices of the arrangement closer than this (unit-ball lengths) are the same vertex.
-constexpr double kVertexMerge = 1e-8;
-// Two envelope values closer than this are tied (ties go to the cone with the lower index, then to cones over
-// the sphere, so the faces on both sides of an edge agree).
-constexpr double kTie = 1e-12;
-// A collar must clear the other stumps, and the envelope must stay below it, by this much (unit-ball lengths):
-// thinner bands of cone between the envelope and the collar make sliver faces that OpenCASCADE's Booleans, when
-// they trim the lattice, fail to split (measured: a 4e-4 band left 52 faces unsplit in a sphere body).
-constexpr double kCollarClearance = 0.02;
 // Each collar's angular cone gets this fraction of half the smallest angle to a neighbour's axis.
 constexpr double kCollarAngleShare = 0.9;
 // The sphere face's seam and poles must lie inside the caps by this much (cosine units), and the seam is sampled
@@ -78,210 +71,21 @@ constexpr int kSeamSamples = 360;
 
 gp_Pnt pnt(const Vec3& v) { return gp_Pnt(v.x, v.y, v.z); }
 gp_Dir dir(const Vec3& v) { return gp_Dir(v.x, v.y, v.z); }
-Vec3 vec(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
-Vec3 vec(const gp_Vec& p) { return {p.X(), p.Y(), p.Z()}; }
 
 
 [[noreturn]] void unsupported(const std::string& why) { fail_input("hub", why); }
 
-// A hull-model cone tangent to the unit sphere: points s d + (c - v s) r(u) + v c d, r(u) = cos u e + sin u f.
-struct Cone {
-  Vec3 d, e, f;
-  double s = 0.0, c = 1.0;
-  Vec3 point(double u, double v) const {
-    return s * d + (c - v * s) * (std::cos(u) * e + std::sin(u) * f) + v * c * d;
-  }
-  double w(const Vec3& x) const { return (glm::dot(d, x) - s) / c; }
-  double u_of(const Vec3& x) const { return std::atan2(glm::dot(x, f), glm::dot(x, e)); }
-  gp_Ax3 frame() const { return gp_Ax3(pnt(s * d), dir(d), dir(e)); }
-  Handle(Geom_Surface) surface() const {
-    if (std::abs(s) < 1e-14) return new Geom_CylindricalSurface(frame(), c);
-    return new Geom_ConicalSurface(frame(), -std::asin(s), c);
-  }
-};
+using hull::Cone;
 
-Cone make_cone(const CoreStump& st) {
-  Cone k;
-  k.d = glm::normalize(st.direction);
-  k.e = any_perpendicular(k.d);
-  k.f = glm::cross(k.d, k.e);
-  k.s = st.sin_phi;
-  k.c = std::sqrt((1.0 - k.s) * (1.0 + k.s));
-  return k;
+// The cone's frame and surface in OpenCASCADE: origin on the tangent circle's center, X along e.
+gp_Ax3 cone_frame(const Cone& k) { return gp_Ax3(pnt(k.s * k.d), dir(k.d), dir(k.e)); }
+
+Handle(Geom_Surface) cone_surface(const Cone& k) {
+  if (std::abs(k.s) < 1e-14) return new Geom_CylindricalSurface(cone_frame(k), k.c);
+  return new Geom_ConicalSurface(cone_frame(k), -std::asin(k.s), k.c);
 }
 
-// On cone i along generator u, stump j dominates below v = t (w_i >= w_j iff v (c_j - B) >= A).
-struct Bound {
-  enum Kind { Lower, Upper, Always, Never } kind = Always;
-  double t = 0.0;
-};
-
-Bound bound_from(const Cone& ki, const Cone& kj, double u) {
-  const Vec3 r = std::cos(u) * ki.e + std::sin(u) * ki.f;
-  const double dd = glm::dot(kj.d, ki.d), dr = glm::dot(kj.d, r);
-  const double A = ki.s * dd + ki.c * dr - kj.s;
-  const double B = ki.c * dd - ki.s * dr;
-  const double D = kj.c - B;
-  if (D > 1e-14) return {Bound::Lower, A / D};
-  if (D < -1e-14) return {Bound::Upper, A / D};
-  return {A <= 0.0 ? Bound::Always : Bound::Never, 0.0};
-}
-
-struct Active {
-  int index = -1;  // -1: the sphere (v >= 0), else the cone that dominates below the envelope
-  double v = 0.0;
-};
-
-Active envelope_at(const std::vector<Cone>& cones, int i, double u) {
-  Active a;
-  for (int j = 0; j < static_cast<int>(cones.size()); ++j) {
-    if (j == i) continue;
-    const Bound b = bound_from(cones[i], cones[j], u);
-    if (b.kind != Bound::Lower) continue;
-    if (b.t > a.v + kTie || (a.index < 0 && b.t > a.v - kTie)) a = {j, std::max(a.v, b.t)};
-  }
-  return a;
-}
-
-// Lowest upper bound along generator u (infinity when none).
-double ceiling_at(const std::vector<Cone>& cones, int i, double u) {
-  double top = std::numeric_limits<double>::infinity();
-  for (int j = 0; j < static_cast<int>(cones.size()); ++j) {
-    if (j == i) continue;
-    const Bound b = bound_from(cones[i], cones[j], u);
-    if (b.kind == Bound::Upper) top = std::min(top, b.t);
-    if (b.kind == Bound::Never) top = -std::numeric_limits<double>::infinity();
-  }
-  return top;
-}
-
-// Solutions u of a0 + a1 cos u + a2 sin u = 0.
-void trig_roots(double a0, double a1, double a2, std::vector<double>& out) {
-  const double r = std::hypot(a1, a2);
-  if (!(r > 1e-15) || std::abs(a0) > r) return;
-  const double phi = std::atan2(a2, a1), beta = std::acos(std::clamp(-a0 / r, -1.0, 1.0));
-  out.push_back(phi + beta);
-  out.push_back(phi - beta);
-}
-
-struct Piece {
-  int active = -1;
-  double u0 = 0.0, u1 = 0.0;  // in the face's window
-  int v0 = -1, v1 = -1;       // vertex ids at u0 and u1
-};
-
-struct Envelope {
-  double window = 0.0;
-  std::vector<Piece> pieces;
-};
-
-// Where the active stump along the envelope of cone i can change: roots of the conditions of the candidates.
-std::vector<double> breakpoint_candidates(const std::vector<Cone>& cones, int i) {
-  const Cone& ki = cones[i];
-  std::vector<double> us;
-  const int n = static_cast<int>(cones.size());
-  for (int j = 0; j < n; ++j) {
-    if (j == i) continue;
-    const Cone& kj = cones[j];
-    const double dd = glm::dot(kj.d, ki.d), de = glm::dot(kj.d, ki.e), df = glm::dot(kj.d, ki.f);
-    // A_j(u) = 0: the envelope of j crosses the tangent circle.
-    trig_roots(ki.s * dd - kj.s, ki.c * de, ki.c * df, us);
-    // D_j(u) = 0: j switches between lower and upper bound.
-    trig_roots(kj.c - ki.c * dd, ki.s * de, ki.s * df, us);
-    for (int k = j + 1; k < n; ++k) {
-      if (k == i) continue;
-      // Points of cone i with w_i = w_j = w_k: the line of two planes meets the cone in up to two points.
-      const Cone& kk = cones[k];
-      const Vec3 n1 = ki.d / ki.c - kj.d / kj.c, n2 = ki.d / ki.c - kk.d / kk.c;
-      const double b1 = ki.s / ki.c - kj.s / kj.c, b2 = ki.s / ki.c - kk.s / kk.c;
-      const Vec3 q = glm::cross(n1, n2);
-      const double qq = glm::dot(q, q);
-      if (!(qq > 1e-24)) continue;
-      const Vec3 p0 = (b1 * glm::cross(n2, q) + b2 * glm::cross(q, n1)) / qq;
-      const double g = glm::dot(ki.d, q) / ki.c, w0 = ki.w(p0);
-      const double A = qq - g * g, B = 2.0 * (glm::dot(p0, q) - w0 * g), C = glm::dot(p0, p0) - 1.0 - w0 * w0;
-      std::vector<double> taus;
-      if (std::abs(A) > 1e-14) {
-        const double disc = B * B - 4 * A * C;
-        if (disc < 0) continue;
-        const double sq = std::sqrt(disc);
-        taus = {(-B - sq) / (2 * A), (-B + sq) / (2 * A)};
-      } else if (std::abs(B) > 1e-14) {
-        taus = {-C / B};
-      }
-      for (double tau : taus) {
-        const Vec3 x = p0 + tau * q;
-        const double v = ki.w(x);
-        if (v < -1e-9 || ki.c - v * ki.s <= 0.0) continue;  // behind the tangent circle, or on the other nappe
-        us.push_back(ki.u_of(x));
-      }
-    }
-  }
-  for (double& u : us) u = wrap_into(u, 0.0);
-  std::sort(us.begin(), us.end());
-  us.erase(std::unique(us.begin(), us.end(), [](double a, double b) { return std::abs(a - b) < 1e-13; }), us.end());
-  return us;
-}
-
-// Vertices shared by all faces of the core, merged by position.
-struct VertexPool {
-  std::vector<Vec3> points;
-  int find_or_add(const Vec3& p) {
-    for (std::size_t k = 0; k < points.size(); ++k)
-      if (glm::length(points[k] - p) < kVertexMerge) return static_cast<int>(k);
-    points.push_back(p);
-    return static_cast<int>(points.size()) - 1;
-  }
-};
-
-Envelope envelope_of(const std::vector<Cone>& cones, int i, double v_collar, VertexPool& pool) {
-  const Cone& ki = cones[i];
-  std::vector<double> us = breakpoint_candidates(cones, i);
-  // Validity along the whole circle: the envelope stays below the collar, the ceilings above it.
-  std::vector<double> probes = us;
-  for (int k = 0; k < 256; ++k) probes.push_back(kTwoPi * k / 256);
-  for (double u : probes) {
-    const Active a = envelope_at(cones, i, u);
-    if (!(a.v < v_collar - kCollarClearance) || !(ceiling_at(cones, i, u) > v_collar + kCollarClearance))
-      unsupported("a stump is swallowed by its neighbours up to its collar");
-  }
-  Envelope env;
-  if (us.empty()) us = {0.0};
-  // Active stump on each interval between candidates; merge equal neighbours.
-  struct Run {
-    int active;
-    double u0, u1;
-  };
-  std::vector<Run> runs;
-  for (std::size_t k = 0; k < us.size(); ++k) {
-    const double a = us[k], b = k + 1 < us.size() ? us[k + 1] : us[0] + kTwoPi;
-    if (b - a < 1e-13) continue;
-    const int act = envelope_at(cones, i, 0.5 * (a + b)).index;
-    if (!runs.empty() && runs.back().active == act)
-      runs.back().u1 = b;
-    else
-      runs.push_back({act, a, b});
-  }
-  if (runs.size() > 1 && runs.front().active == runs.back().active) {
-    runs.front().u0 = runs.back().u0 - kTwoPi;
-    runs.pop_back();
-  }
-  if (runs.size() == 1) {
-    // One stump (or the sphere) all around: a closed edge, its vertex put at u = u0 by the face that makes it.
-    env.window = runs[0].u0;
-    env.pieces.push_back({runs[0].active, runs[0].u0, runs[0].u0 + kTwoPi, -1, -1});
-    return env;
-  }
-  env.window = runs[0].u0;
-  for (const Run& r : runs) {
-    Piece p{r.active, r.u0, r.u1, -1, -1};
-    p.v0 = pool.find_or_add(ki.point(r.u0, envelope_at(cones, i, r.u0).v));
-    env.pieces.push_back(p);
-  }
-  for (std::size_t k = 0; k < env.pieces.size(); ++k) env.pieces[k].v1 = env.pieces[(k + 1) % env.pieces.size()].v0;
-  // Vertex positions at breakpoints are the envelope's value there, which both neighbouring actives share.
-  return env;
-}
+Cone make_cone(const CoreStump& st) { return hull::make_cone(st.direction, st.sin_phi); }
 
 // ---------------------------------------------------------------------------------------------------------------
 // pcurves of arcs on elementary surfaces, approximated with the arc's own parameter.
@@ -366,9 +170,9 @@ Handle(Geom_Curve) conic_between(const Cone& ki, const Cone& kj, const Vec3& nea
   const gp_Pln plane(pnt(n * (b / (nn * nn))), dir(n / nn));
   IntAna_QuadQuadGeo inter;
   if (std::abs(ki.s) < 1e-14)
-    inter.Perform(plane, gp_Cylinder(ki.frame(), ki.c), 1e-12, 1e-12);
+    inter.Perform(plane, gp_Cylinder(cone_frame(ki), ki.c), 1e-12, 1e-12);
   else
-    inter.Perform(plane, gp_Cone(ki.frame(), -std::asin(ki.s), ki.c), 1e-12, 1e-12);
+    inter.Perform(plane, gp_Cone(cone_frame(ki), -std::asin(ki.s), ki.c), 1e-12, 1e-12);
   if (!inter.IsDone()) unsupported("the intersection of two stumps could not be computed");
   Handle(Geom_Curve) best;
   double best_d = std::numeric_limits<double>::infinity();
@@ -472,55 +276,77 @@ bool choose_sphere_frame(const std::vector<Cone>& cones, Vec3& z_out, Vec3& x_ou
   return best > kSeamMargin;
 }
 
-std::shared_ptr<const HubCore> build_hull_core(const std::vector<CoreStump>& stumps, const std::vector<double>& collars) {
-  const int n = static_cast<int>(stumps.size());
+// What the steps of a hull-model core share: the cones and their arrangement, the edges between faces, and the
+// OpenCASCADE topology as it is made.
+struct HullCoreBuild {
   std::vector<Cone> cones;
-  for (const CoreStump& s : stumps) cones.push_back(make_cone(s));
-  std::vector<double> v_collar(n);
-  for (int i = 0; i < n; ++i) v_collar[i] = (collars[i] - cones[i].s) / cones[i].c;
-  VertexPool pool;
-  std::vector<Envelope> env(n);
-  for (int i = 0; i < n; ++i) env[i] = envelope_of(cones, i, v_collar[i], pool);
-
-  // Closed pieces (one active all around) get their vertex from the lower face; the partner face starts there.
-  for (int i = 0; i < n; ++i) {
-    Piece& p = env[i].pieces[0];
-    if (env[i].pieces.size() != 1) continue;
-    if (p.v0 >= 0) continue;
-    const double u = p.u0;
-    p.v0 = p.v1 = pool.find_or_add(cones[i].point(u, envelope_at(cones, i, u).v));
-    if (p.active >= 0) {
-      const int j = p.active;
-      if (env[j].pieces.size() != 1 || env[j].pieces[0].active != i) unsupported("two stumps disagree on their edge");
-      const Vec3 x = pool.points[p.v0];
-      Piece& q = env[j].pieces[0];
-      q.u0 = wrap_into(cones[j].u_of(x), 0.0);
-      q.u1 = q.u0 + kTwoPi;
-      env[j].window = q.u0;
-      q.v0 = q.v1 = p.v0;
-    }
-  }
-
-  // Edges: each cone-cone piece appears on both cones (in opposite directions), each sphere piece once.
+  std::vector<double> v_collar;  // each collar's v on its cone
+  hull::Arrangement arrangement;
   std::vector<CoreEdge> edges;
+  std::vector<std::vector<std::size_t>> face_edges;  // per cone, its edges in the order of its envelope's pieces
+  BRep_Builder builder;
+  std::vector<TopoDS_Vertex> vertices;
+  std::vector<Handle(Geom_Surface)> surfaces;
+  std::vector<TopoDS_Face> cone_faces;
+  std::vector<TopoDS_Face> sphere_faces;
+  double max_error = 0.0;  // of the approximated pcurves
+};
+
+// The tangent circle arc shared by cone i and the sphere, with the circle's parameter as the cone's u.
+CoreEdge sphere_edge(const Cone& k, int i, const hull::Piece& p) {
+  CoreEdge e;
+  e.face_a = i;
+  e.curve = new Geom_Circle(gp_Ax2(pnt(k.s * k.d), dir(k.d), dir(k.e)), k.c);
+  e.t0 = e.a_u0 = p.u0;
+  e.t1 = e.a_u1 = p.u1;
+  e.forward_on_a = true;
+  e.vertex_t0 = p.v0;
+  e.vertex_t1 = p.v1;
+  return e;
+}
+
+// The conic arc where cone i meets cone p.active, from vertex p.v0 through `mid` to p.v1 as cone i runs it.
+CoreEdge conic_edge(const HullCoreBuild& h, int i, const hull::Piece& p, const Vec3& mid) {
+  const std::vector<Vec3>& points = h.arrangement.vertices.points;
+  CoreEdge e;
+  e.face_a = i;
+  e.face_b = p.active;
+  e.curve = conic_between(h.cones[i], h.cones[p.active], mid);
+  const double ta = curve_parameter(e.curve, points[p.v0]), tb = curve_parameter(e.curve, points[p.v1]);
+  const double tm = curve_parameter(e.curve, mid);
+  if (e.curve->IsPeriodic()) {
+    // The arc from the start through the middle to the end, within one period.
+    const double per = e.curve->Period();
+    const double mw = ta + std::fmod(std::fmod(tm - ta, per) + per, per);
+    double bw = ta + std::fmod(std::fmod(tb - ta, per) + per, per);
+    if (p.v0 == p.v1) bw = ta + per;
+    e.forward_on_a = mw <= bw;
+    e.t0 = e.forward_on_a ? ta : bw - per;
+    e.t1 = e.forward_on_a ? bw : ta;
+  } else {
+    e.forward_on_a = ta < tb;
+    e.t0 = std::min(ta, tb);
+    e.t1 = std::max(ta, tb);
+    if (!(tm > e.t0 && tm < e.t1)) unsupported("an open conic arc does not hold its middle point");
+  }
+  e.vertex_t0 = e.forward_on_a ? p.v0 : p.v1;
+  e.vertex_t1 = e.forward_on_a ? p.v1 : p.v0;
+  e.a_u0 = p.u0;
+  e.a_u1 = p.u1;
+  return e;
+}
+
+// Edges: each cone-cone piece appears on both cones (in opposite directions) and becomes one edge; each sphere
+// piece appears once.
+void collect_core_edges(HullCoreBuild& h) {
+  const int n = static_cast<int>(h.cones.size());
   std::map<std::tuple<int, int, int, int>, std::size_t> edge_index;
-  std::vector<std::vector<std::size_t>> face_edges(n);
+  h.face_edges.assign(n, {});
   for (int i = 0; i < n; ++i) {
-    for (const Piece& p : env[i].pieces) {
-      const Vec3 mid = cones[i].point(0.5 * (p.u0 + p.u1), envelope_at(cones, i, 0.5 * (p.u0 + p.u1)).v);
+    for (const hull::Piece& p : h.arrangement.envelopes[i].pieces) {
       if (p.active < 0) {
-        CoreEdge e;
-        e.face_a = i;
-        e.curve = new Geom_Circle(gp_Ax2(pnt(cones[i].s * cones[i].d), dir(cones[i].d), dir(cones[i].e)), cones[i].c);
-        e.t0 = p.u0;
-        e.t1 = p.u1;
-        e.forward_on_a = true;
-        e.vertex_t0 = p.v0;
-        e.vertex_t1 = p.v1;
-        e.a_u0 = p.u0;
-        e.a_u1 = p.u1;
-        face_edges[i].push_back(edges.size());
-        edges.push_back(e);
+        h.face_edges[i].push_back(h.edges.size());
+        h.edges.push_back(sphere_edge(h.cones[i], i, p));
         continue;
       }
       const int j = p.active;
@@ -528,235 +354,225 @@ std::shared_ptr<const HubCore> build_hull_core(const std::vector<CoreStump>& stu
       const auto key = i < j ? std::make_tuple(i, j, p.v0, p.v1) : std::make_tuple(j, i, p.v1, p.v0);
       auto found = edge_index.find(key);
       if (found != edge_index.end()) {
-        CoreEdge& e = edges[found->second];
+        CoreEdge& e = h.edges[found->second];
         e.b_u0 = p.u0;
         e.b_u1 = p.u1;
-        face_edges[i].push_back(found->second);
+        h.face_edges[i].push_back(found->second);
         continue;
       }
-      CoreEdge e;
-      e.face_a = i;
-      e.face_b = j;
-      e.curve = conic_between(cones[i], cones[j], mid);
-      double ta = curve_parameter(e.curve, pool.points[p.v0]), tb = curve_parameter(e.curve, pool.points[p.v1]);
-      const double tm = curve_parameter(e.curve, mid);
-      if (e.curve->IsPeriodic()) {
-        // The arc from the start through the middle to the end, within one period.
-        const double per = e.curve->Period();
-        const double mw = ta + std::fmod(std::fmod(tm - ta, per) + per, per);
-        double bw = ta + std::fmod(std::fmod(tb - ta, per) + per, per);
-        if (p.v0 == p.v1) bw = ta + per;
-        if (mw <= bw) {
-          e.t0 = ta;
-          e.t1 = bw;
-          e.forward_on_a = true;
-        } else {
-          e.t0 = bw - per;
-          e.t1 = ta;
-          e.forward_on_a = false;
-        }
-      } else {
-        e.forward_on_a = ta < tb;
-        e.t0 = std::min(ta, tb);
-        e.t1 = std::max(ta, tb);
-        if (!(tm > e.t0 && tm < e.t1)) unsupported("an open conic arc does not hold its middle point");
-      }
-      e.vertex_t0 = e.forward_on_a ? p.v0 : p.v1;
-      e.vertex_t1 = e.forward_on_a ? p.v1 : p.v0;
-      e.a_u0 = p.u0;
-      e.a_u1 = p.u1;
-      edge_index.emplace(key, edges.size());
-      face_edges[i].push_back(edges.size());
-      edges.push_back(e);
+      const double u_mid = 0.5 * (p.u0 + p.u1);
+      const Vec3 mid = h.cones[i].point(u_mid, hull::envelope_at(h.cones, i, u_mid).v);
+      edge_index.emplace(key, h.edges.size());
+      h.face_edges[i].push_back(h.edges.size());
+      h.edges.push_back(conic_edge(h, i, p, mid));
     }
   }
   for (const auto& [key, index] : edge_index)
-    if (edges[index].b_u1 == 0.0 && edges[index].b_u0 == 0.0)
+    if (h.edges[index].b_u1 == 0.0 && h.edges[index].b_u0 == 0.0)
       unsupported("the stumps' faces disagree about one of their edges");
+}
 
-  // Topology.
-  auto out = std::make_shared<HubCore>();
-  out->kind = CoreKind::Hull;
-  const BRep_Builder b;
-  b.MakeCompound(out->faces);
-  std::vector<TopoDS_Vertex> vertices;
-  for (const Vec3& p : pool.points) {
+// Vertices, edges on their curves, and one face per cone on its surface (bounded later).
+void make_core_topology(HullCoreBuild& h) {
+  for (const Vec3& p : h.arrangement.vertices.points) {
     TopoDS_Vertex v;
-    b.MakeVertex(v, pnt(p), kCoreTolerance);
-    vertices.push_back(v);
+    h.builder.MakeVertex(v, pnt(p), kCoreTolerance);
+    h.vertices.push_back(v);
   }
-  for (CoreEdge& e : edges) {
-    b.MakeEdge(e.edge, e.curve, kCoreTolerance);
-    b.Add(e.edge, vertices[e.vertex_t0].Oriented(TopAbs_FORWARD));
-    b.Add(e.edge, vertices[e.vertex_t1].Oriented(TopAbs_REVERSED));
+  for (CoreEdge& e : h.edges) {
+    h.builder.MakeEdge(e.edge, e.curve, kCoreTolerance);
+    h.builder.Add(e.edge, h.vertices[e.vertex_t0].Oriented(TopAbs_FORWARD));
+    h.builder.Add(e.edge, h.vertices[e.vertex_t1].Oriented(TopAbs_REVERSED));
   }
-  std::vector<Handle(Geom_Surface)> surfaces;
-  std::vector<TopoDS_Face> faces(n);
-  for (int i = 0; i < n; ++i) {
-    surfaces.push_back(cones[i].surface());
-    b.MakeFace(faces[i], surfaces[i], kCoreTolerance);
+  h.cone_faces.resize(h.cones.size());
+  for (std::size_t i = 0; i < h.cones.size(); ++i) {
+    h.surfaces.push_back(cone_surface(h.cones[i]));
+    h.builder.MakeFace(h.cone_faces[i], h.surfaces[i], kCoreTolerance);
   }
-  double max_error = 0.0;
-  // pcurves on the cones.
-  for (CoreEdge& e : edges) {
+}
+
+// Each edge's pcurves on its cones: the tangent circle is the line v = 0; conic arcs are approximated with the
+// arc's own parameter, u unwrapped along the piece each face runs.
+void add_cone_pcurves(HullCoreBuild& h) {
+  for (CoreEdge& e : h.edges) {
     if (e.on_sphere()) {
-      // The tangent circle is the line v = 0 of its cone, with the circle's parameter as u.
-      b.UpdateEdge(e.edge, new Geom2d_Line(gp_Pnt2d(0, 0), gp_Dir2d(1, 0)), faces[e.face_a], kCoreTolerance);
+      h.builder.UpdateEdge(e.edge, new Geom2d_Line(gp_Pnt2d(0, 0), gp_Dir2d(1, 0)), h.cone_faces[e.face_a],
+                           kCoreTolerance);
       continue;
     }
     for (int side = 0; side < 2; ++side) {
       const int face = side == 0 ? e.face_a : e.face_b;
       // The face runs the arc from its u0 to its u1; map the curve's ends accordingly.
       const bool forward = side == 0 ? e.forward_on_a : !e.forward_on_a;
-      const double u_at_t0 = forward ? (side == 0 ? e.a_u0 : e.b_u0) : (side == 0 ? e.a_u1 : e.b_u1);
-      const double u_at_t1 = forward ? (side == 0 ? e.a_u1 : e.b_u1) : (side == 0 ? e.a_u0 : e.b_u0);
-      ArcOnSurface f(e.curve, surfaces[face], e.t0, e.t1, u_at_t0, u_at_t1);
-      b.UpdateEdge(e.edge, approximate(f, e.t0, e.t1, max_error), faces[face], kCoreTolerance);
+      const double u0 = side == 0 ? e.a_u0 : e.b_u0, u1 = side == 0 ? e.a_u1 : e.b_u1;
+      ArcOnSurface f(e.curve, h.surfaces[face], e.t0, e.t1, forward ? u0 : u1, forward ? u1 : u0);
+      h.builder.UpdateEdge(e.edge, approximate(f, e.t0, e.t1, h.max_error), h.cone_faces[face], kCoreTolerance);
     }
   }
-  // Cone faces: envelope, seam, collar.
-  out->collar_position = collars;
-  out->collars.resize(n);
-  for (int i = 0; i < n; ++i) {
-    const Cone& k = cones[i];
-    const double u_star = env[i].pieces[0].u0, vlo = glm::length(pool.points[env[i].pieces[0].v0] - k.point(u_star, 0.0));
-    (void)vlo;
-    const double v_start = k.w(pool.points[env[i].pieces[0].v0]);
-    // Collar circle: parameter u, its vertex at u_star.
-    const Vec3 center = k.s * k.d + v_collar[i] * k.c * k.d;
-    Handle(Geom_Circle) collar_curve =
-        new Geom_Circle(gp_Ax2(pnt(center), dir(k.d), dir(k.e)), k.c - v_collar[i] * k.s);
-    TopoDS_Vertex cv;
-    b.MakeVertex(cv, collar_curve->Value(u_star), kCoreTolerance);
-    TopoDS_Edge collar;
-    b.MakeEdge(collar, collar_curve, kCoreTolerance);
-    b.Add(collar, cv.Oriented(TopAbs_FORWARD));
-    b.Add(collar, cv.Oriented(TopAbs_REVERSED));
-    b.UpdateEdge(collar, new Geom2d_Line(gp_Pnt2d(0, v_collar[i]), gp_Dir2d(1, 0)), faces[i], kCoreTolerance);
-    b.Range(collar, u_star, u_star + kTwoPi);
-    out->collars[i] = collar;
-    // Seam: the generator at u_star, parameterized by v.
-    Handle(Geom_Line) line = new Geom_Line(pnt(k.point(u_star, 0.0)), dir(k.point(u_star, 1.0) - k.point(u_star, 0.0)));
-    TopoDS_Edge seam;
-    b.MakeEdge(seam, line, kCoreTolerance);
-    b.Add(seam, vertices[env[i].pieces[0].v0].Oriented(TopAbs_FORWARD));
-    b.Add(seam, cv.Oriented(TopAbs_REVERSED));
-    b.UpdateEdge(seam, new Geom2d_Line(gp_Pnt2d(u_star + kTwoPi, 0), gp_Dir2d(0, 1)),
-                 new Geom2d_Line(gp_Pnt2d(u_star, 0), gp_Dir2d(0, 1)), faces[i], kCoreTolerance);
-    b.Range(seam, v_start, v_collar[i]);
-    TopoDS_Wire wire;
-    b.MakeWire(wire);
-    for (std::size_t pi = 0; pi < env[i].pieces.size(); ++pi) {
-      const CoreEdge& e = edges[face_edges[i][pi]];
-      const bool forward = e.face_a == i ? e.forward_on_a : !e.forward_on_a;
-      b.Add(wire, e.edge.Oriented(forward ? TopAbs_FORWARD : TopAbs_REVERSED));
-    }
-    b.Add(wire, seam.Oriented(TopAbs_FORWARD));
-    b.Add(wire, collar.Oriented(TopAbs_REVERSED));
-    b.Add(wire, seam.Oriented(TopAbs_REVERSED));
-    wire.Closed(true);
-    b.Add(faces[i], wire);
-  }
-  // Ranges last: they apply to every representation of the edge.
-  for (CoreEdge& e : edges) b.Range(e.edge, e.t0, e.t1);
+}
 
-  // The sphere: the region outside all near caps, bounded by the sphere arcs.
-  std::vector<std::size_t> sphere_arcs;
-  for (std::size_t k = 0; k < edges.size(); ++k)
-    if (edges[k].on_sphere()) sphere_arcs.push_back(k);
-  std::vector<TopoDS_Face> sphere_faces;
-  if (!sphere_arcs.empty()) {
-    Vec3 z, x;
-    if (!choose_sphere_frame(cones, z, x))
-      unsupported("the part of the ball between the stumps leaves no room for the sphere's seam");
-    SphereLayout layout;
-    layout.z = z;
-    layout.x = x;
-    for (const Cone& k : cones) {
-      CircleLayout c;
-      c.cap = {k.d, k.s};
-      c.e1 = k.e;
-      c.e2 = k.f;
-      c.rho = k.c;
-      layout.circles.push_back(c);
-    }
-    Handle(Geom_SphericalSurface) sphere = new Geom_SphericalSurface(gp_Ax3(gp::Origin(), dir(z), dir(x)), 1.0);
-    // Loops: the face runs each arc backwards (its caps on the right); the next arc ends where this one starts.
-    std::map<int, std::size_t> by_end;
-    for (std::size_t k : sphere_arcs) by_end[edges[k].vertex_t1] = k;
-    std::vector<char> used(edges.size(), 0);
-    struct Loop {
-      std::vector<std::size_t> arcs;
-      double area = 0.0;
-      gp_Pnt2d sample;
-    };
-    std::vector<Loop> loops;
-    std::map<std::size_t, Handle(Geom2d_Curve)> pcurve;
-    for (std::size_t k : sphere_arcs) {
-      SphereArc f(layout, edges[k].face_a);
-      pcurve[k] = approximate(f, edges[k].t0, edges[k].t1, max_error);
-    }
-    for (std::size_t start : sphere_arcs) {
-      if (used[start]) continue;
-      Loop loop;
-      std::size_t k = start;
-      for (;;) {
-        used[k] = 1;
-        loop.arcs.push_back(k);
-        if (edges[k].vertex_t0 == edges[start].vertex_t1) break;
-        auto next = by_end.find(edges[k].vertex_t0);
-        if (next == by_end.end() || used[next->second]) unsupported("the part of the ball between the stumps is not closed");
-        k = next->second;
-      }
-      // Shoelace area of the loop in (u, v), run backwards along each arc.
-      for (std::size_t a : loop.arcs) {
-        const Handle(Geom2d_Curve)& c = pcurve[a];
-        for (int s = 0; s < 32; ++s) {
-          const double t = edges[a].t1 - (edges[a].t1 - edges[a].t0) * s / 32.0;
-          const double t2 = edges[a].t1 - (edges[a].t1 - edges[a].t0) * (s + 1) / 32.0;
-          const gp_Pnt2d p = c->Value(t), q = c->Value(t2);
-          loop.area += 0.5 * (p.X() * q.Y() - q.X() * p.Y());
-        }
-      }
-      loop.sample = pcurve[loop.arcs[0]]->Value(0.5 * (edges[loop.arcs[0]].t0 + edges[loop.arcs[0]].t1));
-      loops.push_back(loop);
-    }
-    auto make_wire = [&](const Loop& loop) {
-      TopoDS_Wire w;
-      b.MakeWire(w);
-      for (std::size_t a : loop.arcs) b.Add(w, edges[a].edge.Oriented(TopAbs_REVERSED));
-      w.Closed(true);
-      return w;
-    };
-    // Outer loops (counterclockwise) become faces; holes (clockwise) join the outer loop that surrounds them.
-    std::vector<std::size_t> outers;
-    for (std::size_t l = 0; l < loops.size(); ++l)
-      if (loops[l].area > 0) outers.push_back(l);
-    for (std::size_t o : outers) {
-      TopoDS_Face face;
-      b.MakeFace(face, sphere, kCoreTolerance);
-      for (std::size_t a : loops[o].arcs) b.UpdateEdge(edges[a].edge, pcurve[a], face, kCoreTolerance);
-      b.Add(face, make_wire(loops[o]));
-      sphere_faces.push_back(face);
-    }
-    for (std::size_t l = 0; l < loops.size(); ++l) {
-      if (loops[l].area > 0) continue;
-      if (outers.size() != 1)
-        unsupported("the part of the ball between the stumps has holes and several pieces");
-      TopoDS_Face& face = sphere_faces[0];
-      for (std::size_t a : loops[l].arcs) b.UpdateEdge(edges[a].edge, pcurve[a], face, kCoreTolerance);
-      b.Add(face, make_wire(loops[l]));
-    }
-    if (outers.empty()) unsupported("the part of the ball between the stumps has no outer boundary");
-    for (std::size_t k : sphere_arcs) b.Range(edges[k].edge, edges[k].t0, edges[k].t1);
+// Cone i's face: bounded by its envelope's edges, the seam (the generator where its first piece starts) up to
+// the collar circle, the collar backwards, and the seam back down. Returns the collar edge.
+TopoDS_Edge close_cone_face(HullCoreBuild& h, int i) {
+  const Cone& k = h.cones[i];
+  const BRep_Builder& b = h.builder;
+  const hull::Piece& first = h.arrangement.envelopes[i].pieces[0];
+  const double u_star = first.u0, v_collar = h.v_collar[i];
+  const double v_start = k.w(h.arrangement.vertices.points[first.v0]);
+  // Collar circle: parameter u, its vertex at u_star.
+  Handle(Geom_Circle) collar_curve =
+      new Geom_Circle(gp_Ax2(pnt(k.s * k.d + v_collar * k.c * k.d), dir(k.d), dir(k.e)), k.c - v_collar * k.s);
+  TopoDS_Vertex cv;
+  b.MakeVertex(cv, collar_curve->Value(u_star), kCoreTolerance);
+  TopoDS_Edge collar;
+  b.MakeEdge(collar, collar_curve, kCoreTolerance);
+  b.Add(collar, cv.Oriented(TopAbs_FORWARD));
+  b.Add(collar, cv.Oriented(TopAbs_REVERSED));
+  b.UpdateEdge(collar, new Geom2d_Line(gp_Pnt2d(0, v_collar), gp_Dir2d(1, 0)), h.cone_faces[i], kCoreTolerance);
+  b.Range(collar, u_star, u_star + kTwoPi);
+  // Seam: the generator at u_star, parameterized by v.
+  Handle(Geom_Line) line = new Geom_Line(pnt(k.point(u_star, 0.0)), dir(k.point(u_star, 1.0) - k.point(u_star, 0.0)));
+  TopoDS_Edge seam;
+  b.MakeEdge(seam, line, kCoreTolerance);
+  b.Add(seam, h.vertices[first.v0].Oriented(TopAbs_FORWARD));
+  b.Add(seam, cv.Oriented(TopAbs_REVERSED));
+  b.UpdateEdge(seam, new Geom2d_Line(gp_Pnt2d(u_star + kTwoPi, 0), gp_Dir2d(0, 1)),
+               new Geom2d_Line(gp_Pnt2d(u_star, 0), gp_Dir2d(0, 1)), h.cone_faces[i], kCoreTolerance);
+  b.Range(seam, v_start, v_collar);
+  TopoDS_Wire wire;
+  b.MakeWire(wire);
+  for (std::size_t edge : h.face_edges[i]) {
+    const CoreEdge& e = h.edges[edge];
+    const bool forward = e.face_a == i ? e.forward_on_a : !e.forward_on_a;
+    b.Add(wire, e.edge.Oriented(forward ? TopAbs_FORWARD : TopAbs_REVERSED));
   }
+  b.Add(wire, seam.Oriented(TopAbs_FORWARD));
+  b.Add(wire, collar.Oriented(TopAbs_REVERSED));
+  b.Add(wire, seam.Oriented(TopAbs_REVERSED));
+  wire.Closed(true);
+  b.Add(h.cone_faces[i], wire);
+  return collar;
+}
+
+// A closed loop of sphere arcs, run backwards (the caps on its right), with its signed area in the sphere's
+// (u, v): positive for an outer boundary, negative for a hole.
+struct SphereLoop {
+  std::vector<std::size_t> arcs;
+  double area = 0.0;
+};
+
+std::vector<SphereLoop> sphere_loops(const HullCoreBuild& h, const std::vector<std::size_t>& sphere_arcs,
+                                     std::map<std::size_t, Handle(Geom2d_Curve)>& pcurve) {
+  // The next arc of a loop ends where this one starts.
+  std::map<int, std::size_t> by_end;
+  for (std::size_t k : sphere_arcs) by_end[h.edges[k].vertex_t1] = k;
+  std::vector<char> used(h.edges.size(), 0);
+  std::vector<SphereLoop> loops;
+  for (std::size_t start : sphere_arcs) {
+    if (used[start]) continue;
+    SphereLoop loop;
+    for (std::size_t k = start;;) {
+      used[k] = 1;
+      loop.arcs.push_back(k);
+      if (h.edges[k].vertex_t0 == h.edges[start].vertex_t1) break;
+      auto next = by_end.find(h.edges[k].vertex_t0);
+      if (next == by_end.end() || used[next->second]) unsupported("the part of the ball between the stumps is not closed");
+      k = next->second;
+    }
+    // Shoelace area, run backwards along each arc.
+    for (std::size_t a : loop.arcs) {
+      const CoreEdge& e = h.edges[a];
+      for (int s = 0; s < 32; ++s) {
+        const gp_Pnt2d p = pcurve[a]->Value(e.t1 - (e.t1 - e.t0) * s / 32.0);
+        const gp_Pnt2d q = pcurve[a]->Value(e.t1 - (e.t1 - e.t0) * (s + 1) / 32.0);
+        loop.area += 0.5 * (p.X() * q.Y() - q.X() * p.Y());
+      }
+    }
+    loops.push_back(loop);
+  }
+  return loops;
+}
+
+// The sphere: the region outside all near caps, bounded by the sphere arcs, with its poles and seam inside the
+// caps. Outer loops (counterclockwise) become faces; holes (clockwise) join the one outer loop around them.
+void build_sphere_faces(HullCoreBuild& h) {
+  std::vector<std::size_t> sphere_arcs;
+  for (std::size_t k = 0; k < h.edges.size(); ++k)
+    if (h.edges[k].on_sphere()) sphere_arcs.push_back(k);
+  if (sphere_arcs.empty()) return;
+  Vec3 z, x;
+  if (!choose_sphere_frame(h.cones, z, x))
+    unsupported("the part of the ball between the stumps leaves no room for the sphere's seam");
+  SphereLayout layout;
+  layout.z = z;
+  layout.x = x;
+  for (const Cone& k : h.cones) {
+    CircleLayout c;
+    c.cap = {k.d, k.s};
+    c.e1 = k.e;
+    c.e2 = k.f;
+    c.rho = k.c;
+    layout.circles.push_back(c);
+  }
+  Handle(Geom_SphericalSurface) sphere = new Geom_SphericalSurface(gp_Ax3(gp::Origin(), dir(z), dir(x)), 1.0);
+  std::map<std::size_t, Handle(Geom2d_Curve)> pcurve;
+  for (std::size_t k : sphere_arcs) {
+    SphereArc f(layout, h.edges[k].face_a);
+    pcurve[k] = approximate(f, h.edges[k].t0, h.edges[k].t1, h.max_error);
+  }
+  const std::vector<SphereLoop> loops = sphere_loops(h, sphere_arcs, pcurve);
+  auto add_loop = [&](const SphereLoop& loop, TopoDS_Face& face) {
+    TopoDS_Wire w;
+    h.builder.MakeWire(w);
+    for (std::size_t a : loop.arcs) {
+      h.builder.UpdateEdge(h.edges[a].edge, pcurve[a], face, kCoreTolerance);
+      h.builder.Add(w, h.edges[a].edge.Oriented(TopAbs_REVERSED));
+    }
+    w.Closed(true);
+    h.builder.Add(face, w);
+  };
+  for (const SphereLoop& loop : loops) {
+    if (loop.area <= 0) continue;
+    TopoDS_Face face;
+    h.builder.MakeFace(face, sphere, kCoreTolerance);
+    add_loop(loop, face);
+    h.sphere_faces.push_back(face);
+  }
+  if (h.sphere_faces.empty()) unsupported("the part of the ball between the stumps has no outer boundary");
+  for (const SphereLoop& loop : loops) {
+    if (loop.area > 0) continue;
+    if (h.sphere_faces.size() != 1) unsupported("the part of the ball between the stumps has holes and several pieces");
+    add_loop(loop, h.sphere_faces[0]);
+  }
+  for (std::size_t k : sphere_arcs) h.builder.Range(h.edges[k].edge, h.edges[k].t0, h.edges[k].t1);
+}
+
+// The hull-model core without Booleans: each cone's face between its envelope and its collar, the sphere
+// outside all caps (docs/brep.md, section 6).
+std::shared_ptr<const HubCore> build_hull_core(const std::vector<CoreStump>& stumps, const std::vector<double>& collars) {
+  const int n = static_cast<int>(stumps.size());
+  HullCoreBuild h;
+  for (const CoreStump& s : stumps) h.cones.push_back(make_cone(s));
+  for (int i = 0; i < n; ++i) h.v_collar.push_back((collars[i] - h.cones[i].s) / h.cones[i].c);
+  h.arrangement = hull::arrange_envelopes(h.cones, h.v_collar);
+  collect_core_edges(h);
+  make_core_topology(h);
+  add_cone_pcurves(h);
+  auto out = std::make_shared<HubCore>();
+  out->kind = CoreKind::Hull;
+  out->collar_position = collars;
+  for (int i = 0; i < n; ++i) out->collars.push_back(close_cone_face(h, i));
+  // Ranges last: they apply to every representation of the edge.
+  for (CoreEdge& e : h.edges) h.builder.Range(e.edge, e.t0, e.t1);
+  build_sphere_faces(h);
   // Tolerances from the approximations.
-  const double tol = std::max(kCoreTolerance, 2.0 * max_error);
-  for (CoreEdge& e : edges) b.UpdateEdge(e.edge, tol);
-  for (TopoDS_Vertex& v : vertices) b.UpdateVertex(v, tol);
-  for (TopoDS_Face& f : faces) b.Add(out->faces, f);
-  for (TopoDS_Face& f : sphere_faces) b.Add(out->faces, f);
-  out->face_count = static_cast<std::int64_t>(faces.size() + sphere_faces.size());
+  const double tol = std::max(kCoreTolerance, 2.0 * h.max_error);
+  for (CoreEdge& e : h.edges) h.builder.UpdateEdge(e.edge, tol);
+  for (TopoDS_Vertex& v : h.vertices) h.builder.UpdateVertex(v, tol);
+  h.builder.MakeCompound(out->faces);
+  for (TopoDS_Face& f : h.cone_faces) h.builder.Add(out->faces, f);
+  for (TopoDS_Face& f : h.sphere_faces) h.builder.Add(out->faces, f);
+  out->face_count = static_cast<std::int64_t>(h.cone_faces.size() + h.sphere_faces.size());
   return out;
 }
 

@@ -1,4 +1,4 @@
-#include "steady/brep/sphere_layout.hpp"
+#include "brep/sphere_layout.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -23,12 +23,12 @@ constexpr double kWrapSlack = 1e-3;
 double angle_between(const Vec3& a, const Vec3& b) { return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b)); }
 
 
-struct Frame {
+struct SphereFrame {
   Vec3 z, x, y;
 };
 
 // Seam crossings of a circle: parameters t with p(t) on the half meridian {y = 0, x > 0}.
-std::vector<double> seam_crossings(const CircleLayout& c, const Frame& f) {
+std::vector<double> seam_crossings(const CircleLayout& c, const SphereFrame& f) {
   const double a = c.rho * glm::dot(c.e1, f.y), b = c.rho * glm::dot(c.e2, f.y);
   const double rhs = -c.cap.exit * glm::dot(c.cap.direction, f.y);
   const double r = std::hypot(a, b);
@@ -46,7 +46,7 @@ struct Evaluation {
   int crossing_circles = 0;
 };
 
-Evaluation evaluate(const std::vector<CircleLayout>& circles, const Frame& f) {
+Evaluation evaluate(const std::vector<CircleLayout>& circles, const SphereFrame& f) {
   Evaluation e;
   double margin = M_PI;
   for (const CircleLayout& c : circles) {
@@ -142,7 +142,7 @@ SphereLayout layout_sphere(const std::vector<SphereCap>& caps, SeamPreference pr
     poles.push_back(cap.direction);
     poles.push_back(-cap.direction);
   }
-  Frame best{{0, 0, 1}, {1, 0, 0}, {0, 1, 0}};
+  SphereFrame best{{0, 0, 1}, {1, 0, 0}, {0, 1, 0}};
   const int sign = preference == SeamPreference::FewestCrossings ? -1 : 1;
   auto rank = [&](const Evaluation& e) {
     const bool good = e.margin >= kGoodLayoutMargin;
@@ -154,7 +154,7 @@ SphereLayout layout_sphere(const std::vector<SphereCap>& caps, SeamPreference pr
       const Vec3 x0 = any_perpendicular(z), y0 = glm::cross(z, x0);
       for (int k = 0; k < kSeamLongitudes; ++k) {
         const double a = kTwoPi * k / kSeamLongitudes;
-        Frame f;
+        SphereFrame f;
         f.z = z;
         f.x = std::cos(a) * x0 + std::sin(a) * y0;
         f.y = glm::cross(f.z, f.x);

@@ -4,7 +4,7 @@
 // SameParameter with its 3D circle). Computed once per distinct hub shape; invariant under similarities.
 #include <Geom2d_BSplineCurve.hxx>
 
-#include "steady/brep/sphere_layout.hpp"
+#include "brep/sphere_layout.hpp"
 
 namespace steady {
 

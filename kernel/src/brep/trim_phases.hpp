@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "brep/skin_holes.hpp"
-#include "steady/brep/brep_builder.hpp"
+#include "brep/brep_pieces.hpp"
 #include "steady/brep/skin.hpp"
 #include "steady/brep/solid_body.hpp"
 #include "steady/brep/trim.hpp"

@@ -12,6 +12,7 @@
 // invariant under similarities: so are the (u, v) curves of the circles, which are shared by all copies.
 #include <vector>
 
+#include "steady/brep/brep_builder.hpp"
 #include "steady/core/vec.hpp"
 
 namespace steady {
@@ -69,11 +70,6 @@ struct SphereLayout {
 // Below this margin (radians) a layout is refused: a pole or a near-tangent seam crossing would sit within
 // 1e-4 sphere radii of a circle, closer than the approximations of the (u, v) curves can resolve cleanly.
 constexpr double kMinimumLayoutMargin = 1e-4;
-
-// Among frames whose margin reaches kGoodLayoutMargin, which to prefer. Fewest crossings gives the simplest faces
-// (holes are inner wires); most crossings exercises every role of the general topology (tests, and a check that
-// the builder does not depend on the choice).
-enum class SeamPreference { FewestCrossings, MostCrossings };
 
 // Chooses the frame maximizing the margin over a fixed set of candidate poles and seam directions (the caps'
 // axes and a Fibonacci covering of the sphere), ranking frames whose margin is at least kGoodLayoutMargin by
