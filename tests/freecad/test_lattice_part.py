@@ -51,7 +51,11 @@ class LatticePartTest(unittest.TestCase):
         self.assertTrue(part.Shape.isValid())
         expected, sigma = monte_carlo_volume(api.lattice(self.lattice), self.in_cylinder, (3, 3, 2), (37, 37, 28))
         self.assertLess(abs(part.Volume - expected), 4 * sigma + 1e-9, (part.Volume, expected, sigma))
-        self.assertAlmostEqual(part.Volume, part.Shape.Volume, places=6)
+        # Volume is the kernel's adaptive integration of the part's shape; FreeCAD's Shape.Volume (a fixed Gauss
+        # rule) agrees only to about 1e-6 here, and to 1.3e-3 on the main job's crowded spheres
+        exact = sl.brep_properties(part.Shape.exportBrepToString())["volume"]
+        self.assertLess(abs(part.Volume / exact - 1.0), 1e-9, (part.Volume, exact))
+        self.assertLess(abs(part.Shape.Volume / exact - 1.0), 1e-4, (part.Shape.Volume, exact))
 
     def test_whole_policy_keeps_only_hubs_inside(self):
         clip = api.make_part(self.doc, self.lattice, self.body, policy="clip")

@@ -224,6 +224,25 @@ def test_write_step_progress_and_cancel_leaves_no_file(tmp_path):
     assert {p["name"] for p in sl.read_step(path)} == {"Lattice", "Skin"}
 
 
+def test_write_step_refuses_bad_paths_and_names_before_trimming(tmp_path):
+    """repro reliability/11: a NUL in the path wrote to the path cut at the NUL; a 100,000-character or empty
+    part name wrote a file no reader gives back as written. Refused before the trim, naming the parameter."""
+    lat = strut_lattice(2)
+    cases = [
+        (dict(path=str(tmp_path / "x\x00y.step")), "path"),
+        (dict(path=str(tmp_path / "long.step"), lattice_name="x" * 100000), "lattice_name"),
+        (dict(path=str(tmp_path / "empty.step"), skin_name=""), "skin_name"),
+        (dict(path=str(tmp_path / "no" / "folder" / "a.step")), "path"),
+    ]
+    for kwargs, field in cases:
+        with pytest.raises(ValueError, match=field):
+            lat.write_step(**kwargs)
+    assert os.listdir(str(tmp_path)) == []
+    name = "n" * 255
+    lat.write_step(str(tmp_path / "ok.step"), lattice_name=name)
+    assert sl.read_step(str(tmp_path / "ok.step"))[0]["name"] == name
+
+
 def test_coincident_groups_build_one_ball():
     # Two groups a table places at the same spot, joined by a beam: each ball contains the other, and one of
     # them (the lower index) must be built instead of both being dropped as absorbed (issue 16, repro 06).

@@ -95,7 +95,8 @@ std::string validity_report(const TopoDS_Shape& shape, int max_lines) {
 
 double shape_volume(const TopoDS_Shape& shape) {
   GProp_GProps props;
-  BRepGProp::VolumeProperties(shape, props);
+  constexpr double kRelativeError = 1e-9;
+  BRepGProp::VolumeProperties(shape, props, kRelativeError, Standard_True);
   return props.Mass();
 }
 

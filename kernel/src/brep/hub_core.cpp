@@ -6,11 +6,13 @@
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
+#include <BRepTools_WireExplorer.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <ElCLib.hxx>
 #include <ElSLib.hxx>
 #include <Geom2d_BSplineCurve.hxx>
+#include <Geom2d_Curve.hxx>
 #include <Geom2d_Line.hxx>
 #include <Geom_Circle.hxx>
 #include <Geom_ConicalSurface.hxx>
@@ -576,9 +578,61 @@ std::shared_ptr<const HubCore> build_hull_core(const std::vector<CoreStump>& stu
   return out;
 }
 
-// A frame for the ball whose poles and seam keep away from the stumps' axes: OpenCASCADE's Fuse lost an untouched
-// collar disk when a stump ran along the sphere's seam plane (OCC 7.6, crowded octet hub, stump along -X).
-gp_Ax2 generic_sphere_frame(const std::vector<CoreStump>& stumps) {
+// Angle from the unit vector d to the half great circle from pole z through seam direction x to -z.
+double angle_to_seam(const Vec3& d, const Vec3& z, const Vec3& x) {
+  if (glm::dot(d, x) >= 0.0) return std::asin(std::min(1.0, std::abs(glm::dot(d, glm::cross(z, x)))));
+  const double to_pole = std::acos(std::clamp(glm::dot(d, z), -1.0, 1.0));
+  return std::min(to_pole, M_PI - to_pole);
+}
+
+// Frames for the ball whose seam crosses no exit cap and whose poles are clear of the caps' circles (outside
+// every cap, or inside one: a cap holding a pole is crossed by the seam once, which readers keep). Where a cap
+// straddles the seam, the Fuse's sphere face carries a hole across the periodic boundary, which OpenCASCADE
+// accepts but STEP readers rebuild as intersecting wires (docs/brep.md, section 5). Poles: 97 Fibonacci points
+// on the upper half sphere and the stumps' axes; 72 seam directions each. The `count` best poles, each with its
+// best seam, by the smallest clearance (radians) between a circle and a pole or the seam.
+std::vector<gp_Ax2> portable_sphere_frames(const std::vector<CoreStump>& stumps, std::size_t count) {
+  constexpr int kFibonacci = 97, kSeams = 72;
+  std::vector<Vec3> poles;
+  for (int k = 0; k < kFibonacci; ++k) {
+    const double z = 1.0 - (k + 0.5) / kFibonacci, r = std::sqrt(1.0 - z * z), a = k * 2.399963229728653;
+    poles.emplace_back(r * std::cos(a), r * std::sin(a), z);
+  }
+  for (const CoreStump& s : stumps) poles.push_back(glm::normalize(s.direction));
+  std::vector<std::pair<double, gp_Ax2>> ranked;
+  for (const Vec3& pole : poles) {
+    double pole_clearance = 10.0;
+    std::vector<bool> holds_pole(stumps.size(), false);
+    for (std::size_t i = 0; i < stumps.size(); ++i) {
+      const double to_pole = std::acos(std::clamp(glm::dot(glm::normalize(stumps[i].direction), pole), -1.0, 1.0));
+      const double nearest = std::min(to_pole, M_PI - to_pole), theta = std::acos(stumps[i].exit);
+      holds_pole[i] = nearest < theta;
+      pole_clearance = std::min(pole_clearance, std::abs(nearest - theta));
+    }
+    const Vec3 e0 = any_perpendicular(pole), e1 = glm::cross(pole, e0);
+    double best = -10.0;
+    Vec3 best_seam = e0;
+    for (int j = 0; j < kSeams; ++j) {
+      const double b = j * (2.0 * M_PI / kSeams);
+      const Vec3 seam = std::cos(b) * e0 + std::sin(b) * e1;
+      double clearance = pole_clearance;
+      for (std::size_t i = 0; i < stumps.size(); ++i)
+        if (!holds_pole[i])
+          clearance = std::min(clearance, angle_to_seam(glm::normalize(stumps[i].direction), pole, seam) -
+                                              std::acos(stumps[i].exit));
+      if (clearance > best) best = clearance, best_seam = seam;
+    }
+    ranked.emplace_back(best, gp_Ax2(gp_Pnt(0, 0, 0), dir(pole), dir(best_seam)));
+  }
+  std::stable_sort(ranked.begin(), ranked.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+  std::vector<gp_Ax2> out;
+  for (std::size_t i = 0; i < ranked.size() && out.size() < count; ++i) out.push_back(ranked[i].second);
+  return out;
+}
+
+// The fallback frame: poles farthest from the stumps' axes, the seam farthest from their directions (exit caps may
+// cross the seam: the face is valid, but does not survive a STEP round trip).
+gp_Ax2 spread_sphere_frame(const std::vector<CoreStump>& stumps) {
   constexpr int kCandidates = 97;
   Vec3 best_pole(0.0, 0.0, 1.0);
   double best = -1.0;
@@ -638,13 +692,15 @@ int collar_disk_index(const TopoDS_Face& face, const std::vector<CoreStump>& stu
   return -1;
 }
 
-std::shared_ptr<const HubCore> build_transversal_core(const std::vector<CoreStump>& stumps,
-                                                      const std::vector<double>& collars) {
+namespace {
+
+std::shared_ptr<const HubCore> fuse_core(const std::vector<CoreStump>& stumps, const std::vector<double>& collars,
+                                         const gp_Ax2& ball_frame) {
   auto out = std::make_shared<HubCore>();
   out->kind = CoreKind::Transversal;
   out->collar_position = collars;
   TopTools_ListOfShape args, tools;
-  args.Append(BRepPrimAPI_MakeSphere(generic_sphere_frame(stumps), 1.0).Shape());
+  args.Append(BRepPrimAPI_MakeSphere(ball_frame, 1.0).Shape());
   for (std::size_t i = 0; i < stumps.size(); ++i) {
     const CoreStump& s = stumps[i];
     const Vec3 d = glm::normalize(s.direction), e = any_perpendicular(d);
@@ -696,6 +752,68 @@ std::shared_ptr<const HubCore> build_transversal_core(const std::vector<CoreStum
     out->collars.push_back(TopoDS::Edge(x.Current()));
   }
   return out;
+}
+
+}  // namespace
+
+namespace {
+
+// Whether a sphere face of the core holds a chain of edges across the seam: leaving the seam on one side and
+// coming back to the same side at another latitude. That is a hole laid across the periodic boundary, valid in
+// OpenCASCADE, invalid once a STEP reader rebuilds the face from its loops (docs/brep.md, section 5). A chain
+// around a pole leaves on one side and comes back on the other.
+bool has_straddling_arc(const HubCore& core) {
+  constexpr double kOnSeam = 1e-9;
+  auto side_of = [&](const gp_Pnt2d& p) {
+    if (std::abs(p.X()) < kOnSeam) return 0;
+    if (std::abs(p.X() - 2.0 * M_PI) < kOnSeam) return 1;
+    return -1;
+  };
+  for (TopExp_Explorer f(core.faces, TopAbs_FACE); f.More(); f.Next()) {
+    const TopoDS_Face face = TopoDS::Face(f.Current());
+    if (Handle(Geom_SphericalSurface)::DownCast(BRep_Tool::Surface(face)).IsNull()) continue;
+    for (TopExp_Explorer w(face, TopAbs_WIRE); w.More(); w.Next()) {
+      int left_side = -1;  // the side the current chain left the seam from, or -1 outside a chain
+      double left_v = 0.0;
+      for (BRepTools_WireExplorer e(TopoDS::Wire(w.Current()), face); e.More(); e.Next()) {
+        const TopoDS_Edge& edge = e.Current();
+        if (BRep_Tool::Degenerated(edge) || BRep_Tool::IsClosed(edge, face)) {
+          left_side = -1;
+          continue;
+        }
+        Standard_Real t0, t1;
+        const Handle(Geom2d_Curve) pcurve = BRep_Tool::CurveOnSurface(edge, face, t0, t1);
+        if (pcurve.IsNull()) continue;
+        gp_Pnt2d start = pcurve->Value(t0), end = pcurve->Value(t1);
+        if (edge.Orientation() == TopAbs_REVERSED) std::swap(start, end);
+        if (side_of(start) >= 0) left_side = side_of(start), left_v = start.Y();
+        if (left_side >= 0 && side_of(end) == left_side && std::abs(end.Y() - left_v) > kOnSeam) return true;
+        if (side_of(end) >= 0) left_side = -1;
+      }
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+// The Fuse depends on the ball's frame (OpenCASCADE's sphere has a seam and poles). The spread frame first (the
+// one every trim was measured with); where it leaves a hole across the seam, up to kPortableFrameTries portable
+// frames, the first whose Fuse succeeds without one kept; else the spread frame's core (valid, but a STEP reader
+// will find that face invalid).
+constexpr std::size_t kPortableFrameTries = 4;
+std::shared_ptr<const HubCore> build_transversal_core(const std::vector<CoreStump>& stumps,
+                                                      const std::vector<double>& collars) {
+  std::shared_ptr<const HubCore> spread = fuse_core(stumps, collars, spread_sphere_frame(stumps));
+  if (!has_straddling_arc(*spread)) return spread;
+  for (const gp_Ax2& frame : portable_sphere_frames(stumps, kPortableFrameTries)) {
+    try {
+      std::shared_ptr<const HubCore> portable = fuse_core(stumps, collars, frame);
+      if (!has_straddling_arc(*portable)) return portable;
+    } catch (const InvalidInput&) {  // this frame's Fuse failed: the next one
+    }
+  }
+  return spread;
 }
 
 // How far the ray from the center along unit w stays in stump i: the stump is the beam's cone region between the

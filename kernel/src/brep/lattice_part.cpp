@@ -34,7 +34,10 @@ std::string lattice_part_brep(const FlatLattice& lattice, const LatticePartReque
     Progress part(progress, kPartUnits);
     r = make_part(lattice, request, part);
   }
-  if (stats) *stats = r.stats;
+  if (stats) {
+    *stats = r.stats;
+    stats->volume = shape_volume(r.part);
+  }
   std::string text;
   {
     Progress part(progress, kTextUnits);
@@ -46,6 +49,11 @@ std::string lattice_part_brep(const FlatLattice& lattice, const LatticePartReque
 
 void write_lattice_step(const std::string& path, const FlatLattice& lattice, const LatticePartRequest& request,
                         const StepNames& names, Progress& progress) {
+  // Checked before the trim, which may take minutes.
+  check_output_path(path);
+  check_step_name(names.lattice, "lattice_name");
+  check_step_name(names.skin, "skin_name");
+  check_step_name(names.assembly, "assembly_name");
   LatticePartRequest separate = request;
   separate.trim.unite_skin = false;
   progress.set_total(kStepPartUnits + kStepFileUnits);

@@ -44,6 +44,7 @@ struct Evaluation {
   bool usable = false;
   double margin = 0.0;
   int crossing_circles = 0;
+  int straddles = 0;  // circles crossing the seam twice
 };
 
 Evaluation evaluate(const std::vector<CircleLayout>& circles, const SphereFrame& f) {
@@ -63,6 +64,7 @@ Evaluation evaluate(const std::vector<CircleLayout>& circles, const SphereFrame&
     const std::size_t n = seam_crossings(c, f).size();
     if ((north || south) ? n != 1 : (n != 0 && n != 2)) return e;
     if (n > 0) ++e.crossing_circles;
+    if (n == 2) ++e.straddles;
   }
   e.usable = true;
   e.margin = margin;
@@ -144,9 +146,15 @@ SphereLayout layout_sphere(const std::vector<SphereCap>& caps, SeamPreference pr
   }
   SphereFrame best{{0, 0, 1}, {1, 0, 0}, {0, 1, 0}};
   const int sign = preference == SeamPreference::FewestCrossings ? -1 : 1;
+  // A circle crossing the seam twice (a straddle) is valid in OpenCASCADE but does not survive a STEP round trip:
+  // readers rebuild the face's wires from the file's loops and make the straddle a closed hole across the periodic
+  // boundary ("intersecting wires", docs/brep.md section 2). With the fewest crossings, a frame without straddles
+  // is taken whenever one has a workable margin.
   auto rank = [&](const Evaluation& e) {
     const bool good = e.margin >= kGoodLayoutMargin;
-    return std::make_tuple(good, good ? sign * e.crossing_circles : 0, e.margin);
+    const bool portable = preference == SeamPreference::FewestCrossings && e.straddles == 0 &&
+                          e.margin >= kPortableLayoutMargin;
+    return std::make_tuple(portable, good, good ? sign * e.crossing_circles : 0, e.margin);
   };
   Evaluation best_eval;
   if (!caps.empty()) {

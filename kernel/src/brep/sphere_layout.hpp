@@ -80,5 +80,7 @@ SphereLayout layout_sphere(const std::vector<SphereCap>& caps,
 
 // Frames whose margin reaches this (about 1.7 degrees) are all good; among them fewer crossings win.
 constexpr double kGoodLayoutMargin = 0.03;
+// A frame without straddling circles is preferred to one with a larger margin down to this margin (radians).
+constexpr double kPortableLayoutMargin = 3e-3;
 
 }  // namespace steady

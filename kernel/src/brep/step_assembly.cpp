@@ -1,6 +1,7 @@
 #include "steady/brep/step_assembly.hpp"
 
 #include <IFSelect_ReturnStatus.hxx>
+#include <Interface_Static.hxx>
 #include <Quantity_Color.hxx>
 #include <STEPCAFControl_Reader.hxx>
 #include <STEPCAFControl_Writer.hxx>
@@ -15,6 +16,7 @@
 #include <XCAFDoc_DocumentTool.hxx>
 #include <XCAFDoc_ShapeTool.hxx>
 
+#include <cstdio>
 #include <mutex>
 
 #include "brep/occ_progress.hpp"
@@ -35,6 +37,22 @@ Handle(TDocStd_Document) new_document() {
   XCAFApp_Application::GetApplication()->NewDocument("MDTV-XCAF", doc);
   return doc;
 }
+
+// Sets one of OpenCASCADE's process-wide translation settings for a scope and restores it after, so that FreeCAD's
+// own STEP export in the same process keeps its settings.
+class ScopedStaticInt {
+ public:
+  ScopedStaticInt(const char* name, int value) : name_(name), old_(Interface_Static::IVal(name)) {
+    Interface_Static::SetIVal(name_, value);
+  }
+  ~ScopedStaticInt() { Interface_Static::SetIVal(name_, old_); }
+  ScopedStaticInt(const ScopedStaticInt&) = delete;
+  ScopedStaticInt& operator=(const ScopedStaticInt&) = delete;
+
+ private:
+  const char* name_;
+  int old_;
+};
 
 // Closes an XCAF document however the scope is left (errors, Cancelled).
 struct DocumentCloser {
@@ -79,9 +97,25 @@ void collect(const Handle(XCAFDoc_ShapeTool)& shapes, const Handle(XCAFDoc_Color
 
 }  // namespace
 
+void check_step_name(const std::string& name, const char* field) {
+  if (name.empty()) fail_input(field, "a STEP part name must not be empty");
+  if (name.find('\0') != std::string::npos) fail_input(field, "a STEP part name must not contain a NUL character");
+  if (name.size() > kMaxStepNameLength)
+    fail_input(field, "a STEP part name has at most " + std::to_string(kMaxStepNameLength) + " characters (this one has " +
+                          std::to_string(name.size()) + ")");
+}
+
+void check_output_path(const std::string& path) {
+  if (path.empty() || path.find('\0') != std::string::npos)
+    fail_input("path", "a file path must be non-empty and must not contain a NUL character");
+}
+
 void write_step_assembly(const std::string& path, const std::vector<StepPart>& parts, const std::string& assembly_name,
                          Progress& progress) {
   if (parts.empty()) fail_input("parts", "there is nothing to write");
+  check_output_path(path);
+  check_step_name(assembly_name, "assembly_name");
+  for (const StepPart& p : parts) check_step_name(p.name, "parts");
   // Units: the document 5, the translation to STEP entities 45 (OpenCASCADE reports it), the file 50 (it cannot
   // report: the fraction waits at 0.5 while it is written).
   progress.set_total(100);
@@ -103,9 +137,14 @@ void write_step_assembly(const std::string& path, const std::vector<StepPart>& p
   }
   shapes->UpdateAssemblies();
   progress.advance(5);
-  STEPCAFControl_Writer writer;
+  STEPCAFControl_Writer writer;  // its construction initializes the STEP settings: change them after
   writer.SetColorMode(Standard_True);
   writer.SetNameMode(Standard_True);
+  // The curves of edges on their faces (pcurves) are written, though they make most of the file: without them
+  // (write.surfacecurve.mode 0, a file 4x smaller) OpenCASCADE's reader rebuilds a circle on a sphere as a cubic
+  // B-spline 7e-5 away from the circle, 700 times the edge's tolerance, and volumes come back 3e-6 to 6e-6 off
+  // (docs/brep.md, section 5). Set here, so that a changed default of the process cannot drop them.
+  const ScopedStaticInt with_pcurves("write.surfacecurve.mode", 1);
   bool ok = false;
   {
     Progress part(progress, 45);
@@ -113,8 +152,13 @@ void write_step_assembly(const std::string& path, const std::vector<StepPart>& p
     ok = writer.Transfer(doc, STEPControl_AsIs, nullptr, occ.range());
     occ.finish();  // the last chance to stop: the file is written below
   }
-  ok = ok && writer.Write(path.c_str()) == IFSelect_RetDone;
-  if (!ok) fail_input("path", "cannot write a STEP file to '" + path + "'");
+  // Written beside the target and renamed, so that a failed write leaves no partial file under the name.
+  const std::string partial = path + ".partial";
+  ok = ok && writer.Write(partial.c_str()) == IFSelect_RetDone && std::rename(partial.c_str(), path.c_str()) == 0;
+  if (!ok) {
+    std::remove(partial.c_str());
+    fail_input("path", "cannot write a STEP file to '" + path + "'");
+  }
   progress.finish();
 }
 

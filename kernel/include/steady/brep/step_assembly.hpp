@@ -18,8 +18,17 @@ struct StepPart {
   bool has_color = true;
 };
 
+constexpr std::size_t kMaxStepNameLength = 255;
+
+// Throws InvalidInput naming `field` unless a STEP reader gives `name` back as written: not empty (readers put
+// their translator's name there), no NUL, at most kMaxStepNameLength characters (OpenCASCADE's reader refuses a
+// file holding a name of 100,000 characters).
+void check_step_name(const std::string& name, const char* field);
+// Throws InvalidInput naming "path" for an empty path or one with a NUL (the C library would cut it there).
+void check_output_path(const std::string& path);
+
 // Writes the parts as components of one assembly. Throws InvalidInput naming "path" when the file cannot be
-// written, "parts" when there is nothing to write. Cancelled while the shapes are translated leaves the file
+// written (a failed write leaves no partial file), "parts" when there is nothing to write. Cancelled while the shapes are translated leaves the file
 // untouched (it is written only after; the writing itself runs to its end).
 void write_step_assembly(const std::string& path, const std::vector<StepPart>& parts,
                          const std::string& assembly_name = "LatticePart", Progress& progress = no_progress());

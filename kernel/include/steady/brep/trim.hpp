@@ -64,6 +64,7 @@ struct TrimStats {
                                           // or the spheres laid out the other way) made the part
   std::string relaid_reason;              //   why the earlier attempts failed
   std::int64_t faces = 0;
+  double volume = 0.0;  // of the part (shape_volume), filled by lattice_part_brep
   double classify_seconds = 0.0, build_seconds = 0.0, boolean_seconds = 0.0, assemble_seconds = 0.0;
   double union_seconds = 0.0;      // of boolean_seconds, the union with the skin
   bool union_through_pores = false;  // the union with the skin failed its checks: united through the pores
