@@ -441,6 +441,9 @@ TEST(Trim, BadInputGetsClearMessages) {
   b.Add(two, box(0, 1));
   b.Add(two, box(2, 3));
   EXPECT_NE(message(two, {}).find("body: holds 2 solids"), std::string::npos);
+  // A body 1e-5 across (repro reliability/02: "Caught an unknown exception!" from OpenCASCADE's mesher).
+  const TopoDS_Shape tiny = BRepPrimAPI_MakeBox(gp_Pnt(0.5, 0.5, 0.5), 1e-5, 1e-5, 1e-5).Shape();
+  EXPECT_NE(message(tiny, {}).find("body: is too small"), std::string::npos) << message(tiny, {});
   // The lattice misses the body.
   EXPECT_NE(message(box(10, 11), {}).find("does not meet the body"), std::string::npos) << message(box(10, 11), {});
   // Negative skin, skin thicker than the body.

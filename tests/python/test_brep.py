@@ -243,6 +243,18 @@ def test_write_step_refuses_bad_paths_and_names_before_trimming(tmp_path):
     assert sl.read_step(str(tmp_path / "ok.step"))[0]["name"] == name
 
 
+def test_balls_below_the_brep_tolerance_are_refused():
+    """repro reliability/07: a ball of radius 1e-7 gave an invalid B-rep silently. It names the parameter and
+    says what to do; 1e-5 (100 tolerances) builds a valid solid. (The tiny body of reliability/02 is tested in
+    the kernel: Trim.BadInputGetsClearMessages.)"""
+    t = sl.Similarity.translation
+    tiny = sl.Lattice([((0, 0, 0), 1e-7)], [], (1, 1, 1), t((1, 0, 0)), t((0, 1, 0)), t((0, 0, 1)))
+    with pytest.raises(ValueError, match="radius.*scale the model up"):
+        tiny.brep()
+    small = sl.Lattice([((0, 0, 0), 1e-5)], [], (1, 1, 1), t((1, 0, 0)), t((0, 1, 0)), t((0, 0, 1)))
+    assert sl.brep_properties(small.brep())["valid"]
+
+
 def test_coincident_groups_build_one_ball():
     # Two groups a table places at the same spot, joined by a beam: each ball contains the other, and one of
     # them (the lower index) must be built instead of both being dropped as absorbed (issue 16, repro 06).

@@ -24,6 +24,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "steady/brep/brep_builder.hpp"
 #include "steady/brep/brep_io.hpp"
 #include "steady/core/errors.hpp"
 
@@ -77,6 +78,12 @@ SolidBody::SolidBody(const TopoDS_Shape& shape, const std::string& field) {
   double x0, y0, z0, x1, y1, z1;
   box.Get(x0, y0, z0, x1, y1, z1);
   bounds_ = {{x0, y0, z0}, {x1, y1, z1}};
+  // OpenCASCADE's mesher refused a 1e-5 box with an internal error; 1e4 tolerances is the least we take.
+  constexpr double kMinimumBodySize = 1e4 * kBrepTolerance;
+  if (!(size() >= kMinimumBodySize))
+    fail_input(field, "is too small: its bounding box diagonal is " + std::to_string(size()) + ", below " +
+                          std::to_string(kMinimumBodySize) + " (1e4 times OpenCASCADE's tolerance of 1e-7): scale "
+                          "the model up, e.g. work in micrometres");
   const double deflection = kBodyMeshRelativeDeflection * size();
   BRepMesh_IncrementalMesh mesh(solid_, deflection, Standard_False, 0.3, Standard_True);
   slack_ = kBodyMeshDeflectionFactor * deflection;

@@ -23,6 +23,9 @@ namespace steady {
 
 // OpenCASCADE's confusion tolerance (Precision::Confusion()): the tolerance of exact edges and of faces.
 constexpr double kBrepTolerance = 1e-7;
+// The smallest ball radius and beam radius a B-rep is built for: 100 tolerances. Below about 3 tolerances a ball's
+// sphere came out invalid (not closed); a feature within a few tolerances of its own size is not a shape.
+constexpr double kMinimumBrepRadius = 100.0 * kBrepTolerance;
 
 struct BrepBuildStats {
   std::int64_t balls = 0;          // spherical faces built
