@@ -524,18 +524,21 @@ void check_selection(const FlatLattice& f, const BrepSelection& selection) {
       (!selection.split.empty() && static_cast<std::int64_t>(selection.split.size()) != f.beam_count()))
     fail_input("selection", "needs one flag per ball and per beam");
   auto too_small = [](double r) { return r < kMinimumBrepRadius; };
+  auto g = [](double x) {  // std::to_string prints 1e-7 as 0.000000
+    std::ostringstream os;
+    os << x;
+    return os.str();
+  };
   for (std::int64_t i = 0; i < f.ball_count(); ++i)
     if (selection.balls[i] && too_small(f.balls[i].radius))
-      fail_input("radius", "ball " + std::to_string(i) + " has radius " + std::to_string(f.balls[i].radius) +
-                               ", below the " + std::to_string(kMinimumBrepRadius) +
+      fail_input("radius", "ball " + std::to_string(i) + " has radius " + g(f.balls[i].radius) + ", below the " + g(kMinimumBrepRadius) +
                                " a B-rep can hold (OpenCASCADE's tolerance is 1e-7): scale the model up, e.g. "
                                "work in micrometres");
   for (std::int64_t e = 0; e < f.beam_count(); ++e) {
     const FlatBeam& b = f.beams[e];
     if (selection.beams[e] && (too_small(b.ra) || too_small(b.rb)))
-      fail_input("radius", "beam " + std::to_string(e) + " has an end radius of " +
-                               std::to_string(std::min(b.ra, b.rb)) + ", below the " +
-                               std::to_string(kMinimumBrepRadius) + " a B-rep can hold: scale the model up");
+      fail_input("radius", "beam " + std::to_string(e) + " has an end radius of " + g(std::min(b.ra, b.rb)) +
+                               ", below the " + g(kMinimumBrepRadius) + " a B-rep can hold: scale the model up");
   }
   std::uint64_t faces = 0;
   for (char b : selection.balls) faces += b ? 1 : 0;

@@ -22,6 +22,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <sstream>
 #include <vector>
 
 #include "steady/brep/brep_builder.hpp"
@@ -81,8 +82,8 @@ SolidBody::SolidBody(const TopoDS_Shape& shape, const std::string& field) {
   // OpenCASCADE's mesher refused a 1e-5 box with an internal error; 1e4 tolerances is the least we take.
   constexpr double kMinimumBodySize = 1e4 * kBrepTolerance;
   if (!(size() >= kMinimumBodySize))
-    fail_input(field, "is too small: its bounding box diagonal is " + std::to_string(size()) + ", below " +
-                          std::to_string(kMinimumBodySize) + " (1e4 times OpenCASCADE's tolerance of 1e-7): scale "
+    fail_input(field, "is too small: its bounding box diagonal is " + (std::ostringstream() << size()).str() +
+                          ", below " + (std::ostringstream() << kMinimumBodySize).str() + " (1e4 times OpenCASCADE's tolerance of 1e-7): scale "
                           "the model up, e.g. work in micrometres");
   const double deflection = kBodyMeshRelativeDeflection * size();
   BRepMesh_IncrementalMesh mesh(solid_, deflection, Standard_False, 0.3, Standard_True);
