@@ -798,21 +798,29 @@ bool has_straddling_arc(const HubCore& core) {
 }  // namespace
 
 // The Fuse depends on the ball's frame (OpenCASCADE's sphere has a seam and poles). The spread frame first (the
-// one every trim was measured with); where it leaves a hole across the seam, up to kPortableFrameTries portable
-// frames, the first whose Fuse succeeds without one kept; else the spread frame's core (valid, but a STEP reader
-// will find that face invalid).
+// one every trim was measured with); where it leaves a hole across the seam or its Fuse fails (a collar touched),
+// up to kPortableFrameTries portable frames, the first whose Fuse succeeds without such a hole kept; else the
+// first core built (valid, but a STEP reader will find that face invalid); else the spread frame's error.
 constexpr std::size_t kPortableFrameTries = 4;
 std::shared_ptr<const HubCore> build_transversal_core(const std::vector<CoreStump>& stumps,
                                                       const std::vector<double>& collars) {
-  std::shared_ptr<const HubCore> spread = fuse_core(stumps, collars, spread_sphere_frame(stumps));
-  if (!has_straddling_arc(*spread)) return spread;
+  std::shared_ptr<const HubCore> spread;
+  std::string spread_error;
+  try {
+    spread = fuse_core(stumps, collars, spread_sphere_frame(stumps));
+    if (!has_straddling_arc(*spread)) return spread;
+  } catch (const InvalidInput& e) {
+    spread_error = e.what();
+  }
   for (const gp_Ax2& frame : portable_sphere_frames(stumps, kPortableFrameTries)) {
     try {
       std::shared_ptr<const HubCore> portable = fuse_core(stumps, collars, frame);
       if (!has_straddling_arc(*portable)) return portable;
+      if (!spread) spread = portable;  // valid in OpenCASCADE, though not portable: better than no part
     } catch (const InvalidInput&) {  // this frame's Fuse failed: the next one
     }
   }
+  if (!spread) throw InvalidInput(spread_error);
   return spread;
 }
 
