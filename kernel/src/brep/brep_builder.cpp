@@ -1,5 +1,4 @@
 #include "brep/brep_pieces.hpp"
-#include "steady/brep/brep_io.hpp"
 
 #include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepBuilderAPI_Transform.hxx>
@@ -38,6 +37,7 @@
 #include "steady/lattice/beam_frustum.hpp"
 #include "lattice/circle_frames.hpp"
 #include "steady/query/clean_check.hpp"
+#include "steady/brep/brep_io.hpp"
 #include "steady/core/errors.hpp"
 #include "brep/hub_catalog.hpp"
 #include "brep/hub_core.hpp"
@@ -535,8 +535,8 @@ void check_selection(const FlatLattice& f, const BrepSelection& selection) {
   };
   for (std::int64_t i = 0; i < f.ball_count(); ++i)
     if (selection.balls[i] && too_small(f.balls[i].radius))
-      fail_input("radius", "ball " + std::to_string(i) + " has radius " + g(f.balls[i].radius) + ", below the " + g(kMinimumBrepRadius) +
-                               " a B-rep can hold (OpenCASCADE's tolerance is 1e-7): scale the model up, e.g. "
+      fail_input("radius", "ball " + std::to_string(i) + " has radius " + g(f.balls[i].radius) + ", below the " +
+                               g(kMinimumBrepRadius) + " a B-rep can hold (OpenCASCADE's tolerance is 1e-7): scale the model up, e.g. "
                                "work in micrometres");
   for (std::int64_t e = 0; e < f.beam_count(); ++e) {
     const FlatBeam& b = f.beams[e];

@@ -754,10 +754,6 @@ std::shared_ptr<const HubCore> fuse_core(const std::vector<CoreStump>& stumps, c
   return out;
 }
 
-}  // namespace
-
-namespace {
-
 // Whether a sphere face of the core holds a chain of edges across the seam: leaving the seam on one side and
 // coming back to the same side at another latitude. That is a hole laid across the periodic boundary, valid in
 // OpenCASCADE, invalid once a STEP reader rebuilds the face from its loops (docs/brep.md, section 5). A chain

@@ -28,7 +28,8 @@ void check_step_name(const std::string& name, const char* field);
 void check_output_path(const std::string& path);
 
 // Writes the parts as components of one assembly. Throws InvalidInput naming "path" when the file cannot be
-// written (a failed write leaves no partial file), "parts" when there is nothing to write. Cancelled while the shapes are translated leaves the file
+// written (a failed write leaves no partial file), "parts" when there is nothing to write. Cancelled while the
+// shapes are translated leaves the file
 // untouched (it is written only after; the writing itself runs to its end).
 void write_step_assembly(const std::string& path, const std::vector<StepPart>& parts,
                          const std::string& assembly_name = "LatticePart", Progress& progress = no_progress());
