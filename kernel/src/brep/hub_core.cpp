@@ -598,16 +598,23 @@ std::vector<gp_Ax2> portable_sphere_frames(const std::vector<CoreStump>& stumps,
     const double z = 1.0 - (k + 0.5) / kFibonacci, r = std::sqrt(1.0 - z * z), a = k * 2.399963229728653;
     poles.emplace_back(r * std::cos(a), r * std::sin(a), z);
   }
-  for (const CoreStump& s : stumps) poles.push_back(glm::normalize(s.direction));
+  // Each cap's axis and angular radius, once.
+  std::vector<Vec3> axes;
+  std::vector<double> thetas;
+  for (const CoreStump& s : stumps) {
+    axes.push_back(glm::normalize(s.direction));
+    thetas.push_back(std::acos(s.exit));
+  }
+  poles.insert(poles.end(), axes.begin(), axes.end());
   std::vector<std::pair<double, gp_Ax2>> ranked;
   for (const Vec3& pole : poles) {
     double pole_clearance = 10.0;
     std::vector<bool> holds_pole(stumps.size(), false);
     for (std::size_t i = 0; i < stumps.size(); ++i) {
-      const double to_pole = std::acos(std::clamp(glm::dot(glm::normalize(stumps[i].direction), pole), -1.0, 1.0));
-      const double nearest = std::min(to_pole, M_PI - to_pole), theta = std::acos(stumps[i].exit);
-      holds_pole[i] = nearest < theta;
-      pole_clearance = std::min(pole_clearance, std::abs(nearest - theta));
+      const double to_pole = std::acos(std::clamp(glm::dot(axes[i], pole), -1.0, 1.0));
+      const double nearest = std::min(to_pole, M_PI - to_pole);
+      holds_pole[i] = nearest < thetas[i];
+      pole_clearance = std::min(pole_clearance, std::abs(nearest - thetas[i]));
     }
     const Vec3 e0 = any_perpendicular(pole), e1 = glm::cross(pole, e0);
     double best = -10.0;
@@ -618,8 +625,7 @@ std::vector<gp_Ax2> portable_sphere_frames(const std::vector<CoreStump>& stumps,
       double clearance = pole_clearance;
       for (std::size_t i = 0; i < stumps.size(); ++i)
         if (!holds_pole[i])
-          clearance = std::min(clearance, angle_to_seam(glm::normalize(stumps[i].direction), pole, seam) -
-                                              std::acos(stumps[i].exit));
+          clearance = std::min(clearance, angle_to_seam(axes[i], pole, seam) - thetas[i]);
       if (clearance > best) best = clearance, best_seam = seam;
     }
     ranked.emplace_back(best, gp_Ax2(gp_Pnt(0, 0, 0), dir(pole), dir(best_seam)));
