@@ -39,7 +39,7 @@
 #include "steady/query/clean_check.hpp"
 #include "steady/brep/brep_io.hpp"
 #include "steady/core/errors.hpp"
-#include "brep/hub_catalog.hpp"
+#include "lattice/hub_catalog.hpp"
 #include "brep/hub_core.hpp"
 #include "steady/core/memory_budget.hpp"
 
@@ -56,8 +56,6 @@ constexpr double kCylinderSine = 1e-12;
 // Memory of one face with its edges, vertices, curves and pcurves (measured: 41,000 faces of a 30,000-beam lattice
 // took 209 MB, about 5 KB each; shared pcurves of similar hubs keep it there), with headroom.
 constexpr std::uint64_t kBytesPerFace = 8192;
-// Collars of crowded hubs are sought up to this many ball radii from the center (beyond, the beam's cut decides).
-constexpr double kMaxCollarPosition = 50.0;
 
 gp_Pnt pnt(const Vec3& v) { return gp_Pnt(v.x, v.y, v.z); }
 gp_Dir dir(const Vec3& v) { return gp_Dir(v.x, v.y, v.z); }
@@ -354,69 +352,6 @@ BrepSelection BrepSelection::everything(const FlatLattice& lattice) {
 
 namespace {
 
-// Caps of a hub's exit circles on its sphere pairwise apart (the clean condition on one ball).
-bool caps_disjoint(const Ball& ball, const std::vector<Circle>& exits) {
-  for (std::size_t a = 0; a < exits.size(); ++a)
-    for (std::size_t b = a + 1; b < exits.size(); ++b) {
-      auto angle = [&](const Circle& c) {
-        return std::atan2(c.radius, glm::dot(c.center - ball.center, c.normal));
-      };
-      const double between = std::atan2(glm::length(glm::cross(exits[a].normal, exits[b].normal)),
-                                        glm::dot(exits[a].normal, exits[b].normal));
-      if (between - angle(exits[a]) - angle(exits[b]) < kCleanAngularGap) return false;
-    }
-  return true;
-}
-
-// A built ball's hub: its stumps (the beams `built` says are part of it, with the end at this ball), their exit
-// circles, and its kind: 0 when the circles keep apart (clean), else a core (1: hull model, 2: transversal), with
-// the numbers its core depends on in `extras` (per stump its slope and end radius in ball radii).
-template <class Built>
-HubGeometry hub_geometry(const FlatLattice& f, const std::vector<BeamFrustum>& frustums, std::int64_t i,
-                         const Built& built, std::vector<std::pair<std::int64_t, int>>& stumps) {
-  HubGeometry g;
-  g.ball = f.balls[i];
-  std::vector<double> slopes, end_radii;
-  bool all_tangent = true, all_transversal = true;
-  for (const std::int64_t* e = f.incident_begin(i); e != f.incident_end(i); ++e) {
-    if (!built(*e)) continue;
-    const int end = f.beams[*e].a == i ? 0 : 1;
-    const BeamFrustum& fr = frustums[*e];
-    stumps.emplace_back(*e, end);
-    g.exits.push_back(end == 0 ? fr.circle_a : fr.circle_b);
-    const double r = end == 0 ? f.beams[*e].ra : f.beams[*e].rb;
-    slopes.push_back(end == 0 ? fr.cone.sin_phi : -fr.cone.sin_phi);
-    end_radii.push_back(r / g.ball.radius);
-    all_tangent = all_tangent && r >= g.ball.radius * (1.0 - 1e-12);
-    all_transversal = all_transversal && r < g.ball.radius * (1.0 - 1e-9);
-  }
-  if (!caps_disjoint(g.ball, g.exits)) {
-    if (!all_tangent && !all_transversal)
-      fail_input("hub", "ball " + std::to_string(i) +
-                            " mixes beams tangent to it (hull model) with thinner beams, and their circles overlap");
-    g.kind = all_tangent ? 1 : 2;
-    for (std::size_t s = 0; s < slopes.size(); ++s) g.extras.push_back(slopes[s]), g.extras.push_back(end_radii[s]);
-  }
-  return g;
-}
-
-// A crowded hub's stumps for its core, from its caps (in the hub's canonical frame, or in the world frame scaled
-// to the ball: the core's collars depend on angles and distances only) and the slopes and end radii in its
-// geometry's extras.
-std::vector<CoreStump> core_stumps(const std::vector<SphereCap>& caps, const std::vector<double>& extras) {
-  std::vector<CoreStump> stumps;
-  for (std::size_t k = 0; k < caps.size(); ++k) {
-    CoreStump st;
-    st.direction = caps[k].direction;
-    st.exit = caps[k].exit;
-    st.sin_phi = extras[2 * k];
-    st.end_radius = extras[2 * k + 1];
-    stumps.push_back(st);
-  }
-  return stumps;
-}
-
-CoreKind core_kind(int hub_kind) { return hub_kind == 1 ? CoreKind::Hull : CoreKind::Transversal; }
 
 // The frustums of the lattice with the selection's cut places.
 std::vector<BeamFrustum> selected_frustums(const FlatLattice& f, const BrepSelection& selection) {

@@ -23,19 +23,9 @@
 #include <vector>
 
 #include "steady/core/vec.hpp"
+#include "lattice/hub_collars.hpp"
 
 namespace steady {
-
-// One stump in the canonical frame of its hub.
-struct CoreStump {
-  Vec3 direction{0.0, 0.0, 1.0};  // unit, toward the other node
-  double sin_phi = 0.0;           // the beam's radius at axial x is (end_radius - x sin_phi) / cos_phi
-  double end_radius = 1.0;        // the beam's end ball radius here (1: the hull model, tangent to the ball)
-  double exit = 0.0;              // axial position where the beam's cone leaves the sphere
-  double radius_at(double x) const;
-};
-
-enum class CoreKind { Hull, Transversal };
 
 struct HubCore {
   CoreKind kind = CoreKind::Hull;
@@ -45,20 +35,9 @@ struct HubCore {
   std::int64_t face_count = 0;
 };
 
-// Where the collars go: per stump the smallest axial position at which the stump's cross-section circle lies
-// outside every other stump and the stumps' angular cones beyond their collars are disjoint (a cone through the
-// ball's center narrows as seen from it, so beyond the collars the stumps never meet). Throws InvalidInput
-// (field "hub") when no collar up to `max_position` works.
-std::vector<double> place_collars(const std::vector<CoreStump>& stumps, CoreKind kind, double max_position);
-
 // Builds the core. Throws InvalidInput ("hub") for configurations outside the supported class (a stump swallowed
 // by its neighbours, a conic through a cone's apex, a sphere region the seam cannot avoid).
 std::shared_ptr<const HubCore> build_hub_core(const std::vector<CoreStump>& stumps, CoreKind kind,
                                               const std::vector<double>& collars);
-
-// The hub's volume up to its collars, by integrating the radial distance of its boundary over directions from
-// the ball's center (the core is star-shaped from there): an independent check of the cores in the tests.
-double core_volume_by_quadrature(const std::vector<CoreStump>& stumps, const std::vector<double>& collars,
-                                 int resolution);
 
 }  // namespace steady

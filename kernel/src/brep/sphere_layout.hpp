@@ -14,16 +14,9 @@
 
 #include "steady/brep/brep_builder.hpp"
 #include "steady/core/vec.hpp"
+#include "lattice/hub_catalog.hpp"
 
 namespace steady {
-
-// A cap of the unit sphere: the points p with dot(p, direction) >= exit (|exit| < 1). Its circle is
-//     p(t) = exit * direction + rho (cos t e1 + sin t e2),  rho = sqrt(1 - exit^2),  e2 = direction x e1,
-// turning counterclockwise seen from outside the sphere.
-struct SphereCap {
-  Vec3 direction{0.0, 0.0, 1.0};
-  double exit = 0.0;
-};
 
 enum class CircleRole { Inner, North, South, Straddle };
 

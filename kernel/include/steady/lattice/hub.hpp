@@ -15,6 +15,10 @@
 
 namespace steady {
 
+// Two exit caps on a sphere closer than this angle (radians) count as meeting (the clean check's
+// relative gap, on the sphere).
+constexpr double kCleanAngularGap = 1e-6;
+
 struct Circle {
   Vec3 center{0.0};
   Vec3 normal{0.0, 0.0, 1.0};  // unit; for beam circles it points along the beam, away from the node

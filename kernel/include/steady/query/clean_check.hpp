@@ -28,8 +28,6 @@ namespace steady {
 // tolerance is 1e-7 model units; at the 0.1 to 10 mm radii of printed lattices, 1e-6 relative keeps every gap
 // at least an order of magnitude above it.
 constexpr double kCleanRelativeGap = 1e-6;
-// Two exit caps on a sphere closer than this angle (radians) count as meeting (the same margin, on the sphere).
-constexpr double kCleanAngularGap = 1e-6;
 
 enum class CleanIssueKind {
   CircleOverlap,  // two exit circles on one ball meet (ball, beam, other_beam)

@@ -1,4 +1,4 @@
-#include "brep/hub_catalog.hpp"
+#include "lattice/hub_catalog.hpp"
 
 #include <tbb/parallel_for.h>
 

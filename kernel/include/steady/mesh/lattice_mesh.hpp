@@ -1,0 +1,45 @@
+#pragma once
+// A lattice straight to a triangle mesh, without a B-rep and without a global Boolean.
+//
+// Every hub is the sphere of its ball with one hole per beam, and every beam a strip of triangles between the
+// hole of its hub at one end and the hole of its hub at the other: neighbouring pieces share the vertices of the
+// circles where they meet, so the whole lattice is one closed, consistently oriented 2-manifold. A hub whose exit
+// circles overlap (crowded, or the hull model) is the union of its ball and its stumps up to their collars
+// (hub_collars.hpp), tessellated as a radial graph around its center (no Boolean); beyond the collars the beams
+// run free. Each distinct hub shape (hub_catalog.hpp) is tessellated once per scale octave and placed as similar
+// copies, so the cost of the geometry grows with the number of distinct hubs, the placing with the elements.
+//
+// Accuracy: `tolerance` bounds, in model units, the distance from every triangle to the exact surface of its
+// ball or cone (chord error); every vertex lies on the exact surface (the mesh is inscribed).
+#include <cstdint>
+
+#include "steady/core/progress.hpp"
+#include "steady/lattice/flat_lattice.hpp"
+#include "steady/lattice/lattice.hpp"
+#include "steady/mesh/triangle_mesh.hpp"
+
+namespace steady {
+
+struct MeshOptions {
+  double tolerance = 0.01;  // model units; > 0 and below a quarter of the smallest ball radius
+};
+
+struct LatticeMeshStats {
+  std::int64_t hubs = 0;
+  std::int64_t crowded_hubs = 0;     // hubs whose exit circles overlap (radial graphs up to their collars)
+  std::int64_t beams = 0;            // strips
+  std::int64_t distinct_hubs = 0;    // distinct hub shapes up to similarity
+  std::int64_t templates = 0;        // (shape, scale octave) pairs tessellated
+  double template_seconds = 0.0;     // tessellating the templates
+  double placing_seconds = 0.0;      // placing copies and strips
+};
+
+// InvalidInput: tolerance not finite or not positive ("tolerance"), tolerance of a quarter of a ball's radius or
+// more, a lattice whose elements meet foreign ones ("lattice"), a crowded hub whose collars do not fit ("hub").
+// ResourceLimit: a mesh beyond the memory budget (names the triangle count; a larger tolerance helps).
+TriangleMesh lattice_mesh(const FlatLattice& lattice, const MeshOptions& options, LatticeMeshStats* stats = nullptr,
+                          Progress& progress = no_progress());
+TriangleMesh lattice_mesh(const Lattice& lattice, const MeshOptions& options, LatticeMeshStats* stats = nullptr,
+                          Progress& progress = no_progress());
+
+}  // namespace steady

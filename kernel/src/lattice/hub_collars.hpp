@@ -1,0 +1,48 @@
+#pragma once
+// Where a crowded hub's stumps stop meeting: the collars. A hub whose exit circles overlap is built (as a B-rep
+// core or a mesh) as the union of its ball and its stumps up to one collar circle per stump; beyond the collars
+// the beams run free, like the beams of clean hubs beyond their exit circles. Everything here is in the hub's
+// canonical frame (unit ball at the origin) and free of OpenCASCADE.
+#include <vector>
+
+#include "steady/core/vec.hpp"
+#include "lattice/hub_catalog.hpp"
+
+namespace steady {
+
+// One stump in the canonical frame of its hub.
+struct CoreStump {
+  Vec3 direction{0.0, 0.0, 1.0};  // unit, toward the other node
+  double sin_phi = 0.0;           // the beam's radius at axial x is (end_radius - x sin_phi) / cos_phi
+  double end_radius = 1.0;        // the beam's end ball radius here (1: the hull model, tangent to the ball)
+  double exit = 0.0;              // axial position where the beam's cone leaves the sphere
+  double radius_at(double x) const;
+};
+
+enum class CoreKind { Hull, Transversal };
+
+// Where the collars go: per stump the smallest axial position at which the stump's cross-section circle lies
+// outside every other stump and the stumps' angular cones beyond their collars are disjoint (a cone through the
+// ball's center narrows as seen from it, so beyond the collars the stumps never meet). Throws InvalidInput
+// (field "hub") when no collar up to `max_position` works.
+std::vector<double> place_collars(const std::vector<CoreStump>& stumps, CoreKind kind, double max_position);
+
+// A crowded hub's stumps from its canonical caps and the slopes and end radii in its geometry's extras (see
+// hub_geometry), and which kind of core its HubGeometry::kind asks for.
+std::vector<CoreStump> core_stumps(const std::vector<SphereCap>& caps, const std::vector<double>& extras);
+CoreKind core_kind(int hub_kind);
+
+// Collars are sought up to this many ball radii from the center (beyond, the beam's cut decides).
+constexpr double kMaxCollarPosition = 50.0;
+
+// How far the ray from the ball's center along unit w stays in the stump up to its collar (0 when it meets the
+// stump only outside the ball). The hub up to its collars is star-shaped from the center: its boundary lies at
+// max(1, max over the stumps of stump_reach) along every direction outside the collars' cones.
+double stump_reach(const CoreStump& s, double collar, const Vec3& w);
+
+// The hub's volume up to its collars, by integrating the radial distance of its boundary over directions from
+// the ball's center (the core is star-shaped from there): an independent check of the cores in the tests.
+double core_volume_by_quadrature(const std::vector<CoreStump>& stumps, const std::vector<double>& collars,
+                                 int resolution);
+
+}  // namespace steady

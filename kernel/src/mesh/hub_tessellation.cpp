@@ -1,0 +1,344 @@
+#include "mesh/hub_tessellation.hpp"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/convex_hull_3.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+
+#include "lattice/circle_frames.hpp"
+#include "steady/core/errors.hpp"
+
+namespace steady {
+
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+using Mesh = CGAL::Surface_mesh<Point>;
+
+[[noreturn]] void internal_error(const std::string& what) { throw std::runtime_error("mesh: " + what); }
+
+// Sphere points are spread so that the Delaunay triangles' circumradius a (chord error a^2 / 2 on the unit sphere)
+// stays within the tolerance; the Fibonacci spiral's triangles are near-equilateral, and 0.8 covers the rest.
+double point_spacing(double tolerance) { return std::min(0.5, 0.8 * std::sqrt(6.0 * tolerance)); }
+
+// Points spread evenly over the unit sphere (Fibonacci spiral) at the given spacing (area sqrt(3)/2 s^2 each).
+std::vector<Vec3> sphere_points(double spacing) {
+  const int n = std::max(12, static_cast<int>(std::ceil(8.0 * M_PI / (std::sqrt(3.0) * spacing * spacing))));
+  const double golden_angle = M_PI * (3.0 - std::sqrt(5.0));
+  std::vector<Vec3> points(n);
+  for (int i = 0; i < n; ++i) {
+    const double z = 1.0 - (2.0 * i + 1.0) / n, r = std::sqrt((1.0 - z) * (1.0 + z));
+    points[i] = Vec3(r * std::cos(i * golden_angle), r * std::sin(i * golden_angle), z);
+  }
+  return points;
+}
+
+// The n vertices of the circle of radius `radius` around unit `direction` at axial `position`, counterclockwise
+// about the direction, starting on the direction's reference perpendicular (circle_frames.hpp).
+std::vector<Vec3> circle_points(const Vec3& direction, double position, double radius, int n) {
+  const Vec3 e1 = any_perpendicular(direction), e2 = glm::cross(direction, e1);
+  std::vector<Vec3> points(n);
+  for (int i = 0; i < n; ++i) {
+    const double t = 2.0 * M_PI * i / n;
+    points[i] = position * direction + radius * (std::cos(t) * e1 + std::sin(t) * e2);
+  }
+  return points;
+}
+
+// The convex hull of unit vectors, as outward triangles of their indices: the sphere's Delaunay triangulation.
+// Every point of the sphere is a vertex of the hull (points closer than rounding would not be: an error).
+std::vector<Triangle> sphere_triangulation(const std::vector<Vec3>& directions) {
+  using Key = std::array<double, 3>;
+  std::vector<Point> points;
+  std::map<Key, std::uint32_t> index;
+  for (std::size_t i = 0; i < directions.size(); ++i) {
+    const Vec3& d = directions[i];
+    points.emplace_back(d.x, d.y, d.z);
+    index.emplace(Key{d.x, d.y, d.z}, static_cast<std::uint32_t>(i));
+  }
+  if (index.size() != points.size()) internal_error("two points of a hub's sphere coincide");
+  Mesh hull;
+  CGAL::convex_hull_3(points.begin(), points.end(), hull);
+  if (hull.number_of_vertices() != points.size()) internal_error("a point of a hub's sphere is not on its hull");
+  std::vector<Triangle> triangles;
+  triangles.reserve(hull.number_of_faces());
+  for (const auto f : hull.faces()) {
+    Triangle t;
+    int i = 0;
+    for (const auto v : CGAL::vertices_around_face(hull.halfedge(f), hull)) {
+      const Point& p = hull.point(v);
+      t[i++] = index.at(Key{p.x(), p.y(), p.z()});
+    }
+    triangles.push_back(t);
+  }
+  return triangles;
+}
+
+// Drops the faces of a sphere triangulation with all three corners on one ring (the ring's cap: every other point
+// lies outside it), checking that each ring of n points lost exactly the n - 2 triangles of its polygon.
+std::vector<Triangle> without_ring_caps(const std::vector<Triangle>& triangles, const std::vector<int>& ring_of,
+                                        const std::vector<std::vector<std::uint32_t>>& rings) {
+  std::vector<Triangle> kept;
+  std::vector<std::size_t> dropped(rings.size(), 0);
+  for (const Triangle& t : triangles) {
+    const int k = ring_of[t[0]];
+    if (k >= 0 && ring_of[t[1]] == k && ring_of[t[2]] == k) {
+      ++dropped[k];
+      continue;
+    }
+    kept.push_back(t);
+  }
+  for (std::size_t k = 0; k < rings.size(); ++k)
+    if (dropped[k] + 2 != rings[k].size())
+      internal_error("the sphere of a hub does not hold circle " + std::to_string(k) + " as a face");
+  return kept;
+}
+
+// The boundary of a crowded hub up to its collars, seen from the ball's center: along each direction w outside the
+// collars' cones, the piece (sphere or stump) that reaches farthest, and how far.
+struct RadialHub {
+  const std::vector<CoreStump>& stumps;
+  const std::vector<double>& collars;
+
+  static constexpr int kSphere = -1;
+  double reach(int piece, const Vec3& w) const {
+    return piece == kSphere ? 1.0 : stump_reach(stumps[piece], collars[piece], w);
+  }
+  int piece(const Vec3& w) const {
+    int best = kSphere;
+    double far = 1.0;
+    for (std::size_t k = 0; k < stumps.size(); ++k) {
+      const double r = stump_reach(stumps[k], collars[k], w);
+      if (r > far) far = r, best = static_cast<int>(k);
+    }
+    return best;
+  }
+  double radius(const Vec3& w) const { return reach(piece(w), w); }
+};
+
+// The point where the pieces change along the arc from a (on piece `at_a`) to b: bisection to rounding.
+Vec3 crease_on_arc(const RadialHub& hub, const Vec3& a, const Vec3& b, int at_a) {
+  double lo = 0.0, hi = 1.0;
+  for (int it = 0; it < 60; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (hub.piece(glm::normalize((1.0 - mid) * a + mid * b)) == at_a ? lo : hi) = mid;
+  }
+  return glm::normalize((1.0 - hi) * a + hi * b);
+}
+
+// Where three pieces meet near w: Gauss-Newton on (reach_a - reach_b, reach_b - reach_c) over the tangent plane,
+// with difference quotients; w itself when it does not converge within `step`.
+Vec3 triple_point(const RadialHub& hub, const Vec3& w, const std::array<int, 3>& p, double step) {
+  const Vec3 u = any_perpendicular(w), v = glm::cross(w, u);
+  auto residual = [&](double x, double y) {
+    const Vec3 q = glm::normalize(w + x * u + y * v);
+    return glm::dvec2(hub.reach(p[0], q) - hub.reach(p[1], q), hub.reach(p[1], q) - hub.reach(p[2], q));
+  };
+  double x = 0.0, y = 0.0;
+  constexpr double h = 1e-7;
+  for (int it = 0; it < 20; ++it) {
+    const glm::dvec2 r = residual(x, y);
+    if (glm::length(r) < 1e-14) break;
+    const glm::dvec2 dx = (residual(x + h, y) - r) / h, dy = (residual(x, y + h) - r) / h;
+    const double det = dx.x * dy.y - dx.y * dy.x;
+    if (!(std::abs(det) > 1e-300)) return w;
+    x -= (r.x * dy.y - r.y * dy.x) / det;
+    y -= (dx.x * r.y - dx.y * r.x) / det;
+    if (std::hypot(x, y) > step) return w;
+  }
+  return glm::normalize(w + x * u + y * v);
+}
+
+// Points within `radius` of each other, found through a grid of that cell size.
+class PointGrid {
+ public:
+  explicit PointGrid(double cell) : cell_(cell) {}
+  void add(const Vec3& p) { cells_[key(cell_of(p))].push_back(p); }
+  bool near(const Vec3& p, double radius) const {
+    const auto c = cell_of(p);
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz) {
+          const auto it = cells_.find(key({c[0] + dx, c[1] + dy, c[2] + dz}));
+          if (it == cells_.end()) continue;
+          for (const Vec3& q : it->second)
+            if (glm::length(p - q) < radius) return true;
+        }
+    return false;
+  }
+
+ private:
+  std::array<std::int64_t, 3> cell_of(const Vec3& p) const {
+    return {static_cast<std::int64_t>(std::floor(p.x / cell_)), static_cast<std::int64_t>(std::floor(p.y / cell_)),
+            static_cast<std::int64_t>(std::floor(p.z / cell_))};
+  }
+  static std::uint64_t key(const std::array<std::int64_t, 3>& c) {
+    return (static_cast<std::uint64_t>(c[0] & 0x1fffff) << 42) | (static_cast<std::uint64_t>(c[1] & 0x1fffff) << 21) |
+           static_cast<std::uint64_t>(c[2] & 0x1fffff);
+  }
+  double cell_;
+  std::unordered_map<std::uint64_t, std::vector<Vec3>> cells_;
+};
+
+// The crease curves between the pieces, as points on the direction sphere: crossings of the piece boundaries along
+// the edges of a fine triangulation (spacing `fine`), and the triple points where three pieces meet. Directions in a
+// collar's cone (cos of the angle to axis k above cos_limit[k]) are left out: nothing meets there.
+std::vector<Vec3> crease_points(const RadialHub& hub, const std::vector<Vec3>& axes, const std::vector<double>& cos_limit,
+                                double fine, std::vector<Vec3>& triple_points) {
+  const std::vector<Vec3> grid = sphere_points(fine);
+  std::vector<int> piece(grid.size());
+  constexpr int kHole = -2;
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    piece[i] = hub.piece(grid[i]);
+    for (std::size_t k = 0; k < axes.size(); ++k)
+      if (glm::dot(grid[i], axes[k]) > cos_limit[k]) piece[i] = kHole;
+  }
+  std::vector<Vec3> creases;
+  std::map<std::pair<std::uint32_t, std::uint32_t>, Vec3> on_edge;
+  for (const Triangle& t : sphere_triangulation(grid)) {
+    if (piece[t[0]] == kHole || piece[t[1]] == kHole || piece[t[2]] == kHole) continue;
+    if (piece[t[0]] == piece[t[1]] && piece[t[1]] == piece[t[2]]) continue;
+    Vec3 sum(0.0);
+    for (int e = 0; e < 3; ++e) {
+      const std::uint32_t a = t[e], b = t[(e + 1) % 3];
+      if (piece[a] == piece[b]) continue;
+      const auto key = std::minmax(a, b);
+      auto it = on_edge.find(key);
+      if (it == on_edge.end()) {
+        it = on_edge.emplace(key, crease_on_arc(hub, grid[a], grid[b], piece[a])).first;
+        creases.push_back(it->second);
+      }
+      sum += it->second;
+    }
+    if (piece[t[0]] != piece[t[1]] && piece[t[1]] != piece[t[2]] && piece[t[0]] != piece[t[2]])
+      triple_points.push_back(triple_point(hub, glm::normalize(sum), {piece[t[0]], piece[t[1]], piece[t[2]]}, fine));
+  }
+  return creases;
+}
+
+}  // namespace
+
+int tolerance_level(double relative_tolerance) {
+  return std::max(0, static_cast<int>(std::ceil(-2.0 * std::log2(relative_tolerance) - 1e-9)));
+}
+
+double level_tolerance(int level) { return std::exp2(-0.5 * level); }
+
+int circle_segments(double radius, double tolerance) {
+  int n = 6;
+  if (tolerance < radius) n = std::max(n, static_cast<int>(std::ceil(M_PI / std::acos(1.0 - tolerance / radius))));
+  return std::max(n, static_cast<int>(std::ceil(2.0 * M_PI * radius / point_spacing(tolerance))));
+}
+
+HubTemplate tessellate_clean_hub(const std::vector<SphereCap>& caps, double tolerance) {
+  const double spacing = point_spacing(tolerance);
+  HubTemplate out;
+  std::vector<int> ring_of;
+  for (std::size_t k = 0; k < caps.size(); ++k) {
+    const double rho = std::sqrt((1.0 - caps[k].exit) * (1.0 + caps[k].exit));
+    const std::vector<Vec3> ring = circle_points(caps[k].direction, caps[k].exit, rho, circle_segments(rho, tolerance));
+    std::vector<std::uint32_t> loop;
+    for (const Vec3& p : ring) {
+      loop.push_back(static_cast<std::uint32_t>(out.vertices.size()));
+      out.vertices.push_back(p);
+      ring_of.push_back(static_cast<int>(k));
+    }
+    out.loops.push_back(std::move(loop));
+    out.loop_position.push_back(caps[k].exit);
+    out.loop_radius.push_back(rho);
+  }
+  // Sphere points clear of every cap by about half a spacing, so no sliver forms along a circle.
+  for (const Vec3& p : sphere_points(spacing)) {
+    bool clear = true;
+    for (const SphereCap& c : caps) {
+      const double cap_angle = std::acos(std::clamp(c.exit, -1.0, 1.0));
+      const double angle = std::acos(std::clamp(glm::dot(p, c.direction), -1.0, 1.0));
+      if (angle < cap_angle + 0.5 * spacing) clear = false;
+    }
+    if (clear) {
+      out.vertices.push_back(p);
+      ring_of.push_back(-1);
+    }
+  }
+  out.triangles = without_ring_caps(sphere_triangulation(out.vertices), ring_of, out.loops);
+  return out;
+}
+
+HubTemplate tessellate_crowded_hub(const std::vector<CoreStump>& stumps, const std::vector<double>& collars,
+                                   double tolerance) {
+  const RadialHub hub{stumps, collars};
+  // Directions are spaced for the most curved piece: a stump of radius rho seen from up to `far` away.
+  double rho_min = 1.0, far = 1.0;
+  std::vector<Vec3> axes;
+  std::vector<double> collar_angle;
+  for (std::size_t k = 0; k < stumps.size(); ++k) {
+    axes.push_back(glm::normalize(stumps[k].direction));
+    const double rc = stumps[k].radius_at(collars[k]);
+    rho_min = std::min({rho_min, rc, stumps[k].radius_at(std::max(stumps[k].exit, 0.0))});
+    far = std::max(far, std::hypot(collars[k], rc));
+    collar_angle.push_back(std::atan2(rc, collars[k]));
+  }
+  const double spacing = point_spacing(tolerance * rho_min / (far * far));
+  HubTemplate out;
+  std::vector<Vec3> directions;
+  std::vector<int> ring_of;
+  // The collar rings: exact points of the collar circles, and their directions.
+  std::vector<Vec3> ring_points;
+  for (std::size_t k = 0; k < stumps.size(); ++k) {
+    const double rc = stumps[k].radius_at(collars[k]);
+    const int n = std::max(circle_segments(rc, tolerance),
+                           static_cast<int>(std::ceil(2.0 * M_PI * std::sin(collar_angle[k]) / spacing)));
+    std::vector<std::uint32_t> loop;
+    for (const Vec3& p : circle_points(axes[k], collars[k], rc, n)) {
+      loop.push_back(static_cast<std::uint32_t>(directions.size()));
+      directions.push_back(glm::normalize(p));
+      ring_points.push_back(p);
+      ring_of.push_back(static_cast<int>(k));
+    }
+    out.loops.push_back(std::move(loop));
+    out.loop_position.push_back(collars[k]);
+    out.loop_radius.push_back(rc);
+  }
+  // The creases, thinned to about half a spacing (triple points first), then the even points clear of them and of
+  // the collars' cones.
+  std::vector<double> cos_limit;
+  for (double a : collar_angle) cos_limit.push_back(std::cos(a + 0.25 * spacing));
+  std::vector<Vec3> triples;
+  const std::vector<Vec3> creases = crease_points(hub, axes, cos_limit, 0.25 * spacing, triples);
+  PointGrid kept(0.5 * spacing), dense(0.5 * spacing);
+  for (const Vec3& p : creases) dense.add(p);
+  for (const Vec3& p : triples) dense.add(p);
+  auto keep = [&](const Vec3& p) {
+    if (kept.near(p, 0.45 * spacing)) return;
+    kept.add(p);
+    directions.push_back(p);
+    ring_of.push_back(-1);
+  };
+  for (const Vec3& p : triples) keep(p);
+  for (const Vec3& p : creases) keep(p);
+  for (const Vec3& p : sphere_points(spacing)) {
+    bool clear = !dense.near(p, 0.5 * spacing);
+    for (std::size_t k = 0; k < axes.size() && clear; ++k)
+      clear = std::acos(std::clamp(glm::dot(p, axes[k]), -1.0, 1.0)) > collar_angle[k] + 0.5 * spacing;
+    if (clear) {
+      directions.push_back(p);
+      ring_of.push_back(-1);
+    }
+  }
+  out.triangles = without_ring_caps(sphere_triangulation(directions), ring_of, out.loops);
+  // Each direction to its point on the boundary: the radial image of a sphere triangulation is embedded (every
+  // triangle keeps its own cone of directions), closed but for the collar holes, and outward.
+  out.vertices.resize(directions.size());
+  for (std::size_t i = 0; i < directions.size(); ++i)
+    out.vertices[i] = ring_of[i] >= 0 ? ring_points[i] : hub.radius(directions[i]) * directions[i];
+  return out;
+}
+
+}  // namespace steady

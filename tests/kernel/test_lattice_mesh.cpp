@@ -1,0 +1,189 @@
+// Lattice meshes: closed, oriented 2-manifolds without self-intersection (CGAL's own checks, not ours), whose
+// volume is the exact properties' volume within the chord bound, and every vertex on the exact surface.
+#include <gtest/gtest.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <random>
+
+#include "sample_lattices.hpp"
+#include "test_lattices.hpp"
+#include "steady/core/errors.hpp"
+#include "steady/lattice/flat_lattice.hpp"
+#include "steady/lattice/presets.hpp"
+#include "steady/mesh/lattice_mesh.hpp"
+#include "steady/properties/lattice_properties.hpp"
+#include "steady/query/queries.hpp"
+
+namespace steady {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using SurfaceMesh = CGAL::Surface_mesh<K::Point_3>;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+struct MeshCheck {
+  bool closed = false, outward = false, self_intersecting = true;
+  std::size_t components = 0;
+  double volume = 0.0;
+};
+
+// What CGAL says of the mesh.
+MeshCheck cgal_check(const TriangleMesh& mesh) {
+  std::vector<K::Point_3> points;
+  for (const Vec3& v : mesh.vertices) points.emplace_back(v.x, v.y, v.z);
+  std::vector<std::vector<std::size_t>> polygons;
+  for (const Triangle& t : mesh.triangles) polygons.push_back({t[0], t[1], t[2]});
+  MeshCheck c;
+  if (!PMP::is_polygon_soup_a_polygon_mesh(polygons)) return c;
+  SurfaceMesh sm;
+  PMP::polygon_soup_to_polygon_mesh(points, polygons, sm);
+  c.closed = CGAL::is_closed(sm);
+  if (!c.closed) return c;
+  c.outward = PMP::is_outward_oriented(sm);
+  c.self_intersecting = PMP::does_self_intersect(sm);
+  auto fcc = sm.add_property_map<SurfaceMesh::Face_index, std::size_t>("f:cc").first;
+  c.components = PMP::connected_components(sm, fcc);
+  c.volume = PMP::volume(sm);
+  return c;
+}
+
+// Connected components of the lattice's graph (balls joined by beams): one closed surface each.
+std::int64_t lattice_components(const FlatLattice& f) {
+  std::vector<std::int64_t> parent(f.ball_count());
+  for (std::int64_t i = 0; i < f.ball_count(); ++i) parent[i] = i;
+  auto root = [&](std::int64_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (const FlatBeam& b : f.beams) parent[root(b.a)] = root(b.b);
+  std::int64_t n = 0;
+  for (std::int64_t i = 0; i < f.ball_count(); ++i) n += root(i) == i;
+  return n;
+}
+
+struct Case {
+  std::string name;
+  Lattice lattice;
+  double tolerance;
+};
+
+void expect_valid_mesh(const Case& c) {
+  SCOPED_TRACE(c.name);
+  LatticeMeshStats stats;
+  const TriangleMesh mesh = lattice_mesh(c.lattice, {c.tolerance}, &stats);
+  const MeshEdgeReport edges = mesh_edge_report(mesh);
+  EXPECT_EQ(edges.border_edges, 0);
+  EXPECT_EQ(edges.non_manifold_edges, 0);
+  EXPECT_EQ(edges.misoriented_edges, 0);
+  const MeshCheck check = cgal_check(mesh);
+  EXPECT_TRUE(check.closed);
+  EXPECT_TRUE(check.outward);
+  EXPECT_FALSE(check.self_intersecting);
+  EXPECT_EQ(static_cast<std::int64_t>(check.components), lattice_components(flatten(c.lattice)));
+  // Inscribed pieces: the mesh lies inside the exact solid, within the tolerance of its boundary.
+  const LatticeProperties exact = lattice_properties(c.lattice);
+  const double area = mesh_area(mesh);
+  EXPECT_NEAR(mesh_volume(mesh), check.volume, 1e-9 * exact.volume);
+  EXPECT_LE(check.volume, exact.volume * (1.0 + 1e-9));
+  EXPECT_GE(check.volume, exact.volume - c.tolerance * area) << "exact " << exact.volume;
+  // Every vertex on the exact surface: the union's inside depth (the largest over the elements of how deep the
+  // point lies in it; a beam is its cone between the two tangent circles) is zero there.
+  const FlatLattice f = flatten(c.lattice);
+  double worst = 0.0;
+  for (std::size_t v = 0; v < mesh.vertices.size(); v += 7) {
+    const Vec3 p = mesh.vertices[v];
+    double depth = -1e300;
+    for (const Ball& b : f.balls) depth = std::max(depth, b.radius - glm::length(p - b.center));
+    for (const FlatBeam& e : f.beams) {
+      const BeamCone cone = beam_cone({f.balls[e.a].center, e.ra}, {f.balls[e.b].center, e.rb});
+      if (!cone.has_lateral_surface()) continue;
+      const Vec3 w = p - cone.a;
+      const double x = glm::dot(w, cone.axis), r = glm::length(w - x * cone.axis);
+      if (x >= cone.ra * cone.sin_phi - 1e-9 && x <= cone.length + cone.rb * cone.sin_phi + 1e-9)
+        depth = std::max(depth, (cone.radius_at(x) - r) * cone.cos_phi);
+    }
+    worst = std::max(worst, std::abs(depth));
+  }
+  // Vertices of crowded hubs lie on the exact surface up to the rounding of their crease points' bisection.
+  EXPECT_LT(worst, 1e-9 * (1.0 + f.balls[0].radius)) << "a vertex off the exact surface";
+  std::cout << c.name << ": " << mesh.triangles.size() << " triangles, " << stats.distinct_hubs << " distinct hubs, "
+            << stats.crowded_hubs << " crowded, " << stats.templates << " templates, volume " << check.volume
+            << " exact " << exact.volume << " (bound " << c.tolerance * area << ")\n";
+}
+
+TEST(LatticeMesh, PresetsThinBeamsAreClosedManifolds) {
+  for (const std::string& name : preset_names())
+    expect_valid_mesh({name + " thin", preset_lattice(name, {2, 2, 2}, 2.0, 0.25, 0.1), 0.005});
+}
+
+TEST(LatticeMesh, PresetsThickBeamsBuildCrowdedHubsAsUnions) {
+  for (const std::string& name : preset_names())
+    expect_valid_mesh({name + " thick", preset_lattice(name, {2, 2, 2}, 2.0, 0.3, 0.24), 0.005});
+}
+
+TEST(LatticeMesh, HullModelPresets) {
+  for (const std::string& name : preset_names())
+    expect_valid_mesh({name + " hull", preset_lattice(name, {2, 2, 2}, 2.0, 0.2, 0.0), 0.005});
+}
+
+TEST(LatticeMesh, StrutLatticesWithStepsOfEveryKind) {
+  std::mt19937_64 rng(5);
+  for (int trial = 0; trial < 8; ++trial) {
+    const test::StepKind kind = test::StepKind(trial % 4);
+    const Lattice lat = test::strut_lattice(rng, kind, {3, 3, 2}, 0.2 + 0.05 * (trial % 3));
+    const double radius = flatten(lat).balls[0].radius;
+    expect_valid_mesh({"strut kind " + std::to_string(int(kind)), lat, 0.02 * radius});
+  }
+}
+
+TEST(LatticeMesh, TaperedLatticeSharesTemplatesAcrossScales) {
+  // Tapered by a dilation along U: hubs along each row are similar copies at scales spread over an octave.
+  const Lattice lat = Lattice::incremental({{{0, 0, 0}, 0.2}}, test::cubic_patterns(), {8, 3, 3},
+                                           Similarity::dilation(0.9, {10.0, 0, 0}),
+                                           Similarity::translation({0, 1, 0}), Similarity::translation({0, 0, 1}));
+  LatticeMeshStats stats;
+  lattice_mesh(lat, {0.002}, &stats);
+  EXPECT_LT(stats.distinct_hubs, stats.hubs / 2);
+  EXPECT_GT(stats.templates, stats.distinct_hubs);  // one shape at several scale levels
+  EXPECT_LT(stats.templates, stats.hubs);
+  expect_valid_mesh({"tapered", lat, 0.002});
+}
+
+TEST(LatticeMesh, DumbbellLoneBallCylinderAndAbsorbedBall) {
+  const FlatLattice dumbbell =
+      make_flat_lattice({{{0, 0, 0}, 1.0}, {{3, 0.5, 0.2}, 0.8}, {{-5, 1, 2}, 0.7}}, {{0, 1, 0.4, 0.3}});
+  const FlatLattice wide = make_flat_lattice({{{2, -2, 0}, 0.5}, {{2, 0, 0}, 0.5}, {{2, 3, 0}, 2.1}},
+                                             {{0, 1, 0.3, 0.3}, {1, 2, 0.49, 1.99}});
+  const FlatLattice absorbed = make_flat_lattice({{{0, 0, 0}, 1.0}, {{0.3, 0, 0}, 0.5}, {{5, 0, 0}, 1.0}},
+                                                 {{0, 1, 0.9, 0.4}, {0, 2, 0.3, 0.3}});
+  for (const FlatLattice* f : {&dumbbell, &wide, &absorbed}) {
+    const TriangleMesh mesh = lattice_mesh(*f, {0.01});
+    const MeshCheck check = cgal_check(mesh);
+    EXPECT_TRUE(check.closed && check.outward && !check.self_intersecting);
+    EXPECT_EQ(mesh_edge_report(mesh).border_edges, 0);
+  }
+  EXPECT_EQ(cgal_check(lattice_mesh(dumbbell, {0.01})).components, 2u);
+  EXPECT_EQ(cgal_check(lattice_mesh(absorbed, {0.01})).components, 1u);
+}
+
+TEST(LatticeMesh, BadToleranceNamesTheParameter) {
+  const Lattice lat = preset_lattice("cubic", {1, 1, 1}, 2.0, 0.25, 0.1);
+  for (double t : {0.0, -1.0, std::nan(""), 0.1}) {
+    try {
+      lattice_mesh(lat, {t});
+      FAIL() << "accepted tolerance " << t;
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find("tolerance"), std::string::npos) << e.what();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace steady
