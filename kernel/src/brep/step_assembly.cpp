@@ -105,11 +105,6 @@ void check_step_name(const std::string& name, const char* field) {
                           std::to_string(name.size()) + ")");
 }
 
-void check_output_path(const std::string& path) {
-  if (path.empty() || path.find('\0') != std::string::npos)
-    fail_input("path", "a file path must be non-empty and must not contain a NUL character");
-}
-
 void write_step_assembly(const std::string& path, const std::vector<StepPart>& parts, const std::string& assembly_name,
                          Progress& progress) {
   if (parts.empty()) fail_input("parts", "there is nothing to write");

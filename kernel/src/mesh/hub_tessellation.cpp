@@ -9,6 +9,7 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <unordered_map>
 
 #include "lattice/circle_frames.hpp"
@@ -76,8 +77,12 @@ std::vector<Triangle> sphere_triangulation(const std::vector<Vec3>& directions) 
       const Point& p = hull.point(v);
       t[i++] = index.at(Key{p.x(), p.y(), p.z()});
     }
+    // Each triangle from its smallest index, the list sorted: the same points give the same triangles in the same
+    // order whatever order the hull visited them in (it shuffles its input).
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
     triangles.push_back(t);
   }
+  std::sort(triangles.begin(), triangles.end());
   return triangles;
 }
 
@@ -311,7 +316,11 @@ HubTemplate tessellate_crowded_hub(const std::vector<CoreStump>& stumps, const s
   std::vector<double> cos_limit;
   for (double a : collar_angle) cos_limit.push_back(std::cos(a + 0.25 * spacing));
   std::vector<Vec3> triples;
-  const std::vector<Vec3> creases = crease_points(hub, axes, cos_limit, 0.25 * spacing, triples);
+  std::vector<Vec3> creases = crease_points(hub, axes, cos_limit, 0.25 * spacing, triples);
+  // Thinned in a fixed order, so the template does not depend on the order the creases were found in.
+  auto lexicographic = [](const Vec3& a, const Vec3& b) { return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z); };
+  std::sort(creases.begin(), creases.end(), lexicographic);
+  std::sort(triples.begin(), triples.end(), lexicographic);
   PointGrid kept(0.5 * spacing), dense(0.5 * spacing);
   for (const Vec3& p : creases) dense.add(p);
   for (const Vec3& p : triples) dense.add(p);

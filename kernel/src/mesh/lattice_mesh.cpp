@@ -1,7 +1,10 @@
 #include "steady/mesh/lattice_mesh.hpp"
 
+#include "mesh/mesh_plan.hpp"
+
 #include <tbb/parallel_for.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -53,19 +56,6 @@ void check_clean_for_mesh(const FlatLattice& f) {
   fail_input("lattice", os.str());
 }
 
-struct HubPiece {
-  std::int64_t ball = -1;
-  std::vector<std::pair<std::int64_t, int>> stumps;  // (beam, end: 0 at a, 1 at b)
-  int templ = -1;
-  std::uint64_t first_vertex = 0;
-};
-
-// Where a beam's strip starts and ends: a hub and one of its loops.
-struct BeamEnd {
-  std::int64_t hub = -1;
-  int slot = -1;
-};
-
 // The strip between loop a (counterclockwise about the beam's axis) and loop b (given counterclockwise about the
 // opposite direction, as hub b sees its stump): the two polygons merged by angle about the axis, so every
 // triangle spans at most one segment of each circle.
@@ -110,140 +100,201 @@ void strip_triangles(const std::vector<Vec3>& va, const std::vector<std::uint32_
 
 }  // namespace
 
-TriangleMesh lattice_mesh(const FlatLattice& f, const MeshOptions& options, LatticeMeshStats* stats_out,
-                          Progress& progress) {
-  LatticeMeshStats stats;
+MeshPlan plan_lattice_mesh(const FlatLattice& f, const MeshOptions& options, Progress& progress) {
+  MeshPlan plan;
+  plan.lattice = &f;
+  LatticeMeshStats& stats = plan.stats;
   check_tolerance(f, options.tolerance);
   progress.set_total(100);
   check_clean_for_mesh(f);
   progress.advance(5);
-  const std::vector<BeamFrustum> frustums = beam_frustums(f);
+  plan.frustums = beam_frustums(f);
+  const std::vector<BeamFrustum>& frustums = plan.frustums;
   const std::vector<char> absorbed = absorbed_balls(f, frustums);
 
   // Hubs and their distinct shapes.
-  std::vector<HubPiece> hubs;
   std::vector<HubGeometry> geometry;
-  std::vector<BeamEnd> ends(2 * f.beam_count());
+  plan.ends.assign(2 * f.beam_count(), MeshBeamEnd{});
   for (std::int64_t i = 0; i < f.ball_count(); ++i) {
     if (absorbed[i]) continue;
-    HubPiece h;
+    MeshHub h;
     h.ball = i;
     geometry.push_back(hub_geometry(
         f, frustums, i, [&](std::int64_t e) { return frustums[e].exists; }, h.stumps));
     for (std::size_t s = 0; s < h.stumps.size(); ++s)
-      ends[2 * h.stumps[s].first + h.stumps[s].second] = {static_cast<std::int64_t>(hubs.size()), static_cast<int>(s)};
-    hubs.push_back(std::move(h));
+      plan.ends[2 * h.stumps[s].first + h.stumps[s].second] = {static_cast<std::int64_t>(plan.hubs.size()),
+                                                               static_cast<int>(s)};
+    plan.hubs.push_back(std::move(h));
   }
-  const HubCatalog catalog = catalog_hubs(geometry);
+  plan.catalog = catalog_hubs(geometry);
+  const HubCatalog& catalog = plan.catalog;
 
   // One template per (shape, tolerance level).
   std::map<std::pair<int, int>, int> template_of;
   std::vector<std::pair<int, int>> keys;
-  for (std::size_t h = 0; h < hubs.size(); ++h) {
-    const int level = tolerance_level(options.tolerance / f.balls[hubs[h].ball].radius);
+  for (std::size_t h = 0; h < plan.hubs.size(); ++h) {
+    const int level = tolerance_level(options.tolerance / f.balls[plan.hubs[h].ball].radius);
     const auto key = std::make_pair(catalog.placements[h].shape, level);
     const auto [it, fresh] = template_of.emplace(key, static_cast<int>(keys.size()));
     if (fresh) keys.push_back(key);
-    hubs[h].templ = it->second;
+    plan.hubs[h].templ = it->second;
     stats.crowded_hubs += geometry[h].kind != 0;
   }
   const auto t0 = std::chrono::steady_clock::now();
-  std::vector<HubTemplate> templates(keys.size());
+  plan.templates.resize(keys.size());
   {
-    Progress part(progress, 45, static_cast<std::int64_t>(keys.size()));
+    Progress part(progress, 90, static_cast<std::int64_t>(keys.size()));
     tbb::parallel_for(std::size_t(0), keys.size(), [&](std::size_t t) {
       part.check();
       const auto [shape, level] = keys[t];
       const std::vector<SphereCap>& caps = catalog.shapes[shape];
       const HubGeometry& rep = geometry[catalog.representatives[shape]];
       if (rep.kind == 0) {
-        templates[t] = tessellate_clean_hub(caps, level_tolerance(level));
+        plan.templates[t] = tessellate_clean_hub(caps, level_tolerance(level));
       } else {
         const std::vector<CoreStump> stumps = core_stumps(caps, rep.extras);
         const CoreKind kind = core_kind(rep.kind);
-        templates[t] = tessellate_crowded_hub(stumps, place_collars(stumps, kind, kMaxCollarPosition),
-                                              level_tolerance(level));
+        plan.templates[t] = tessellate_crowded_hub(stumps, place_collars(stumps, kind, kMaxCollarPosition),
+                                                   level_tolerance(level));
       }
       part.advance();
     });
   }
   stats.template_seconds = seconds_since(t0);
 
-  // Sizes, offsets, and the memory they need.
-  const auto t1 = std::chrono::steady_clock::now();
-  std::uint64_t vertex_count = 0, triangle_count = 0;
-  for (HubPiece& h : hubs) {
-    h.first_vertex = vertex_count;
-    vertex_count += templates[h.templ].vertices.size();
-    triangle_count += templates[h.templ].triangles.size();
+  // Sizes and offsets; every beam fits between its hubs' loops.
+  for (MeshHub& h : plan.hubs) {
+    h.first_vertex = plan.vertex_count;
+    h.first_triangle = plan.triangle_count;
+    plan.vertex_count += plan.templates[h.templ].vertices.size();
+    plan.triangle_count += plan.templates[h.templ].triangles.size();
   }
-  std::vector<std::uint64_t> hub_first_triangle(hubs.size() + 1, 0);
-  for (std::size_t h = 0; h < hubs.size(); ++h)
-    hub_first_triangle[h + 1] = hub_first_triangle[h] + templates[hubs[h].templ].triangles.size();
-  std::vector<std::uint64_t> beam_first_triangle(f.beam_count() + 1, triangle_count);
+  plan.beam_first_triangle.assign(f.beam_count() + 1, plan.triangle_count);
   for (std::int64_t e = 0; e < f.beam_count(); ++e) {
     std::uint64_t n = 0;
     if (frustums[e].exists) {
-      const BeamEnd& a = ends[2 * e];
-      const BeamEnd& b = ends[2 * e + 1];
+      const MeshBeamEnd& a = plan.ends[2 * e];
+      const MeshBeamEnd& b = plan.ends[2 * e + 1];
       if (a.hub < 0 || b.hub < 0) throw std::runtime_error("mesh: beam " + std::to_string(e) + " lost a hub");
-      n = templates[hubs[a.hub].templ].loops[a.slot].size() + templates[hubs[b.hub].templ].loops[b.slot].size();
+      auto position = [&](const MeshBeamEnd& end) {
+        return plan.templates[plan.hubs[end.hub].templ].loop_position[end.slot] *
+               f.balls[plan.hubs[end.hub].ball].radius;
+      };
+      const double at_a = position(a), at_b = position(b), length = frustums[e].cone.length;
+      if (!(at_a + at_b < length * (1.0 - 1e-9)))
+        fail_input("hub", "beam " + std::to_string(e) + " (balls " + std::to_string(f.beams[e].a) + " and " +
+                              std::to_string(f.beams[e].b) + ") is too short for the collars of its crowded hubs (" +
+                              g(at_a) + " + " + g(at_b) + " of its length " + g(length) +
+                              "): thinner beams or smaller balls there");
+      n = strip_size(plan, e);
       ++stats.beams;
     }
-    beam_first_triangle[e + 1] = beam_first_triangle[e] + n;
+    plan.beam_first_triangle[e + 1] = plan.beam_first_triangle[e] + n;
   }
-  triangle_count = beam_first_triangle[f.beam_count()];
-  if (vertex_count > 0xffffffffull)
-    throw ResourceLimit("mesh: " + std::to_string(vertex_count) +
-                        " vertices exceed the 2^32 an indexed mesh holds: use a larger tolerance or write STL");
-  require_memory(vertex_count * sizeof(Vec3) + triangle_count * sizeof(Triangle),
-                 "a mesh of " + std::to_string(triangle_count) + " triangles (a larger tolerance makes fewer)");
+  plan.triangle_count = plan.beam_first_triangle[f.beam_count()];
+  stats.hubs = static_cast<std::int64_t>(plan.hubs.size());
+  stats.distinct_hubs = static_cast<std::int64_t>(catalog.shapes.size());
+  stats.templates = static_cast<std::int64_t>(plan.templates.size());
+  stats.triangles = static_cast<std::int64_t>(plan.triangle_count);
+  stats.vertices = static_cast<std::int64_t>(plan.vertex_count);
+  progress.finish();
+  return plan;
+}
 
-  // Copies of the templates in place, then the strips.
-  TriangleMesh mesh;
-  mesh.vertices.resize(vertex_count);
-  mesh.triangles.resize(triangle_count);
+Vec3 placed_vertex(const MeshPlan& plan, std::size_t h, std::uint32_t v) {
+  const Ball& ball = plan.lattice->balls[plan.hubs[h].ball];
+  return ball.center + (ball.radius * plan.catalog.placements[h].rotation) * plan.templates[plan.hubs[h].templ].vertices[v];
+}
+
+void place_hub(const MeshPlan& plan, std::size_t h, Vec3* vertices, Triangle* triangles) {
+  const HubTemplate& t = plan.templates[plan.hubs[h].templ];
+  for (std::size_t v = 0; v < t.vertices.size(); ++v) vertices[v] = placed_vertex(plan, h, static_cast<std::uint32_t>(v));
+  const auto base = static_cast<std::uint32_t>(plan.hubs[h].first_vertex);
+  for (const Triangle& tri : t.triangles) *triangles++ = {base + tri[0], base + tri[1], base + tri[2]};
+}
+
+std::size_t strip_size(const MeshPlan& plan, std::int64_t e) {
+  std::size_t n = 0;
+  for (int end = 0; end < 2; ++end) {
+    const MeshBeamEnd& be = plan.ends[2 * e + end];
+    n += plan.templates[plan.hubs[be.hub].templ].loops[be.slot].size();
+  }
+  return n;
+}
+
+namespace {
+
+// A beam's loops in place, with their vertices' indices into the whole mesh.
+void strip_loops(const MeshPlan& plan, std::int64_t e, std::vector<Vec3> (&points)[2],
+                 std::vector<std::uint32_t> (&index)[2]) {
+  for (int end = 0; end < 2; ++end) {
+    const MeshBeamEnd& be = plan.ends[2 * e + end];
+    const MeshHub& h = plan.hubs[be.hub];
+    for (std::uint32_t v : plan.templates[h.templ].loops[be.slot]) {
+      index[end].push_back(static_cast<std::uint32_t>(h.first_vertex + v));
+      points[end].push_back(placed_vertex(plan, be.hub, v));
+    }
+  }
+}
+
+}  // namespace
+
+void place_strip(const MeshPlan& plan, std::int64_t e, Triangle* triangles) {
+  std::vector<Vec3> points[2];
+  std::vector<std::uint32_t> index[2];
+  strip_loops(plan, e, points, index);
+  const BeamCone& cone = plan.frustums[e].cone;
+  strip_triangles(points[0], index[0], points[1], index[1], cone.axis, cone.a, triangles);
+}
+
+void place_strip_corners(const MeshPlan& plan, std::int64_t e, std::array<Vec3, 3>* corners) {
+  std::vector<Vec3> points[2];
+  std::vector<std::uint32_t> index[2];
+  strip_loops(plan, e, points, index);
+  // Local indices: loop a first, then loop b.
+  const auto na = static_cast<std::uint32_t>(index[0].size());
+  for (std::uint32_t i = 0; i < index[0].size(); ++i) index[0][i] = i;
+  for (std::uint32_t i = 0; i < index[1].size(); ++i) index[1][i] = na + i;
+  std::vector<Triangle> local(index[0].size() + index[1].size());
+  const BeamCone& cone = plan.frustums[e].cone;
+  strip_triangles(points[0], index[0], points[1], index[1], cone.axis, cone.a, local.data());
+  for (const Triangle& t : local) {
+    for (int k = 0; k < 3; ++k) (*corners)[k] = t[k] < na ? points[0][t[k]] : points[1][t[k] - na];
+    ++corners;
+  }
+}
+
+TriangleMesh lattice_mesh(const FlatLattice& f, const MeshOptions& options, LatticeMeshStats* stats_out,
+                          Progress& progress) {
+  progress.set_total(100);
+  MeshPlan plan;
   {
-    Progress part(progress, 50, static_cast<std::int64_t>(hubs.size() + f.beam_count()));
-    tbb::parallel_for(std::size_t(0), hubs.size(), [&](std::size_t h) {
-      const HubTemplate& t = templates[hubs[h].templ];
-      const Ball& ball = f.balls[hubs[h].ball];
-      const Mat3 m = ball.radius * catalog.placements[h].rotation;
-      for (std::size_t v = 0; v < t.vertices.size(); ++v) mesh.vertices[hubs[h].first_vertex + v] = ball.center + m * t.vertices[v];
-      const auto base = static_cast<std::uint32_t>(hubs[h].first_vertex);
-      Triangle* out = mesh.triangles.data() + hub_first_triangle[h];
-      for (const Triangle& tri : t.triangles) *out++ = {base + tri[0], base + tri[1], base + tri[2]};
+    Progress part(progress, 60);
+    plan = plan_lattice_mesh(f, options, part);
+  }
+  const auto t1 = std::chrono::steady_clock::now();
+  if (plan.vertex_count > 0xffffffffull)
+    throw ResourceLimit("mesh: " + std::to_string(plan.vertex_count) +
+                        " vertices exceed the 2^32 an indexed mesh holds: use a larger tolerance, or write STL");
+  require_memory(plan.vertex_count * sizeof(Vec3) + plan.triangle_count * sizeof(Triangle),
+                 "a mesh of " + std::to_string(plan.triangle_count) + " triangles (a larger tolerance makes fewer)");
+  TriangleMesh mesh;
+  mesh.vertices.resize(plan.vertex_count);
+  mesh.triangles.resize(plan.triangle_count);
+  {
+    Progress part(progress, 40, static_cast<std::int64_t>(plan.hubs.size() + f.beam_count()));
+    tbb::parallel_for(std::size_t(0), plan.hubs.size(), [&](std::size_t h) {
+      place_hub(plan, h, mesh.vertices.data() + plan.hubs[h].first_vertex,
+                mesh.triangles.data() + plan.hubs[h].first_triangle);
       if (h % 1024 == 0) part.advance(1024);
     });
     tbb::parallel_for(std::int64_t(0), f.beam_count(), [&](std::int64_t e) {
-      if (!frustums[e].exists) return;
-      auto loop = [&](const BeamEnd& end, std::vector<Vec3>& points, std::vector<std::uint32_t>& index) {
-        const HubPiece& h = hubs[end.hub];
-        const HubTemplate& t = templates[h.templ];
-        const double position = t.loop_position[end.slot] * f.balls[h.ball].radius;
-        for (std::uint32_t v : t.loops[end.slot]) {
-          index.push_back(static_cast<std::uint32_t>(h.first_vertex + v));
-          points.push_back(mesh.vertices[h.first_vertex + v]);
-        }
-        return position;
-      };
-      std::vector<Vec3> pa, pb;
-      std::vector<std::uint32_t> ia, ib;
-      const double at_a = loop(ends[2 * e], pa, ia), at_b = loop(ends[2 * e + 1], pb, ib);
-      const BeamCone& cone = frustums[e].cone;
-      if (!(at_a + at_b < cone.length * (1.0 - 1e-9)))
-        fail_input("hub", "beam " + std::to_string(e) + " (balls " + std::to_string(f.beams[e].a) + " and " +
-                              std::to_string(f.beams[e].b) + ") is too short for the collars of its crowded hubs (" +
-                              g(at_a) + " + " + g(at_b) + " of its length " + g(cone.length) + ")");
-      strip_triangles(pa, ia, pb, ib, cone.axis, cone.a, mesh.triangles.data() + beam_first_triangle[e]);
+      if (plan.frustums[e].exists) place_strip(plan, e, mesh.triangles.data() + plan.beam_first_triangle[e]);
       if (e % 1024 == 0) part.advance(1024);
     });
   }
-  stats.placing_seconds = seconds_since(t1);
-  stats.hubs = static_cast<std::int64_t>(hubs.size());
-  stats.distinct_hubs = static_cast<std::int64_t>(catalog.shapes.size());
-  stats.templates = static_cast<std::int64_t>(templates.size());
-  if (stats_out) *stats_out = stats;
+  plan.stats.placing_seconds = seconds_since(t1);
+  if (stats_out) *stats_out = plan.stats;
   progress.finish();
   return mesh;
 }

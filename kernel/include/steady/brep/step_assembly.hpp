@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "steady/core/output_file.hpp"  // check_output_path
 #include "steady/core/progress.hpp"
 
 namespace steady {
@@ -24,8 +25,6 @@ constexpr std::size_t kMaxStepNameLength = 255;
 // their translator's name there), no NUL, at most kMaxStepNameLength characters (OpenCASCADE's reader refuses a
 // file holding a name of 100,000 characters).
 void check_step_name(const std::string& name, const char* field);
-// Throws InvalidInput naming "path" for an empty path or one with a NUL (the C library would cut it there).
-void check_output_path(const std::string& path);
 
 // Writes the parts as components of one assembly. Throws InvalidInput naming "path" when the file cannot be
 // written (a failed write leaves no partial file), "parts" when there is nothing to write. Cancelled while the

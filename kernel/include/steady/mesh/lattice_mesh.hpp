@@ -29,7 +29,9 @@ struct LatticeMeshStats {
   std::int64_t crowded_hubs = 0;     // hubs whose exit circles overlap (radial graphs up to their collars)
   std::int64_t beams = 0;            // strips
   std::int64_t distinct_hubs = 0;    // distinct hub shapes up to similarity
-  std::int64_t templates = 0;        // (shape, scale octave) pairs tessellated
+  std::int64_t templates = 0;        // (shape, scale level) pairs tessellated
+  std::int64_t vertices = 0;
+  std::int64_t triangles = 0;
   double template_seconds = 0.0;     // tessellating the templates
   double placing_seconds = 0.0;      // placing copies and strips
 };

@@ -1,0 +1,56 @@
+#pragma once
+// What a lattice mesh is made of before any triangle is placed: the hubs with their templates (each distinct hub
+// shape tessellated once per scale level), where every beam's strip starts and ends, and the size of the result.
+// The mesh itself is then produced piece by piece (place_hub, place_strip), whole (lattice_mesh) or streamed to
+// a file chunk after chunk (write_lattice_stl), from the same placement arithmetic so the pieces always match.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "lattice/hub_catalog.hpp"
+#include "mesh/hub_tessellation.hpp"
+#include "steady/lattice/beam_frustum.hpp"
+#include "steady/lattice/flat_lattice.hpp"
+#include "steady/mesh/lattice_mesh.hpp"
+
+namespace steady {
+
+struct MeshHub {
+  std::int64_t ball = -1;
+  std::vector<std::pair<std::int64_t, int>> stumps;  // (beam, end: 0 at a, 1 at b)
+  int templ = -1;
+  std::uint64_t first_vertex = 0, first_triangle = 0;
+};
+
+// Where a beam's strip starts or ends: one of a hub's loops.
+struct MeshBeamEnd {
+  std::int64_t hub = -1;
+  int slot = -1;
+};
+
+struct MeshPlan {
+  const FlatLattice* lattice = nullptr;
+  std::vector<BeamFrustum> frustums;
+  std::vector<MeshHub> hubs;
+  std::vector<MeshBeamEnd> ends;  // 2 per beam: at a, at b
+  HubCatalog catalog;
+  std::vector<HubTemplate> templates;
+  std::vector<std::uint64_t> beam_first_triangle;  // beam_count + 1 entries; strips follow all hubs
+  std::uint64_t vertex_count = 0, triangle_count = 0;
+  LatticeMeshStats stats;
+};
+
+// Checks the options and the lattice (InvalidInput naming "tolerance", "lattice" or "hub"), builds the templates.
+MeshPlan plan_lattice_mesh(const FlatLattice& lattice, const MeshOptions& options, Progress& progress);
+
+// Vertex v of hub h's template in place.
+Vec3 placed_vertex(const MeshPlan& plan, std::size_t h, std::uint32_t v);
+// Hub h's vertices and triangles (indices from first_vertex) into the given arrays.
+void place_hub(const MeshPlan& plan, std::size_t h, Vec3* vertices, Triangle* triangles);
+// Beam e's strip (strip_size(e) triangles, indices into the whole mesh's vertices) into `triangles`.
+std::size_t strip_size(const MeshPlan& plan, std::int64_t e);
+void place_strip(const MeshPlan& plan, std::int64_t e, Triangle* triangles);
+// The same strip as corner coordinates (what a streamed STL needs).
+void place_strip_corners(const MeshPlan& plan, std::int64_t e, std::array<Vec3, 3>* corners);
+
+}  // namespace steady
