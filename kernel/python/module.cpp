@@ -17,6 +17,7 @@ void bind_brep(py::module_& m);
 void bind_queries(py::module_& m);
 void bind_properties(py::module_& m);
 void bind_presets(py::module_& m);
+void bind_mesh(py::module_& m);
 }  // namespace steadypy
 
 PYBIND11_MODULE(steadylattice, m) {
@@ -46,4 +47,5 @@ PYBIND11_MODULE(steadylattice, m) {
   steadypy::bind_queries(m);
   steadypy::bind_properties(m);
   steadypy::bind_presets(m);
+  steadypy::bind_mesh(m);
 }

@@ -1,0 +1,171 @@
+// Python bindings of the mesh side: the lattice as numpy arrays, and the printer formats (STL streamed from the
+// lattice, OBJ, 3MF, 3MF beam lattice). Thin: conversions only; the GIL is released while the kernel works.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cstring>
+
+#include "convert.hpp"
+#include "steady/lattice/flat_lattice.hpp"
+#include "steady/lattice/lattice.hpp"
+#include "steady/mesh/lattice_mesh.hpp"
+#include "steady/mesh/mesh_files.hpp"
+#include "steady/mesh/threemf_reader.hpp"
+
+namespace steadypy {
+
+using steady::Lattice;
+
+namespace {
+
+py::dict stats_dict(const steady::LatticeMeshStats& s) {
+  py::dict d;
+  d["hubs"] = s.hubs;
+  d["crowded_hubs"] = s.crowded_hubs;
+  d["beams"] = s.beams;
+  d["distinct_hubs"] = s.distinct_hubs;
+  d["templates"] = s.templates;
+  d["vertices"] = s.vertices;
+  d["triangles"] = s.triangles;
+  d["template_seconds"] = s.template_seconds;
+  d["placing_seconds"] = s.placing_seconds;
+  return d;
+}
+
+void fill(const py::object& target, const py::dict& values) {
+  if (target.is_none()) return;
+  if (!py::isinstance<py::dict>(target)) value_error("stats", "expected a dict to fill, or None");
+  py::dict d = target.cast<py::dict>();
+  for (auto item : values) d[item.first] = item.second;
+}
+
+py::tuple mesh_arrays(const steady::TriangleMesh& mesh) {
+  py::array_t<double> vertices({static_cast<py::ssize_t>(mesh.vertices.size()), py::ssize_t(3)});
+  py::array_t<std::uint32_t> triangles({static_cast<py::ssize_t>(mesh.triangles.size()), py::ssize_t(3)});
+  if (!mesh.vertices.empty()) std::memcpy(vertices.mutable_data(), mesh.vertices.data(), mesh.vertices.size() * 3 * sizeof(double));
+  if (!mesh.triangles.empty())
+    std::memcpy(triangles.mutable_data(), mesh.triangles.data(), mesh.triangles.size() * 3 * sizeof(std::uint32_t));
+  return py::make_tuple(vertices, triangles);
+}
+
+steady::TriangleMesh lattice_mesh_of(const Lattice& lat, double tolerance, const py::object& progress,
+                                     steady::LatticeMeshStats& stats) {
+  return run_with_progress(progress, [&](steady::Progress& p) {
+    return steady::lattice_mesh(steady::flatten(lat), {tolerance}, &stats, p);
+  });
+}
+
+}  // namespace
+
+void bind_mesh(py::module_& m) {
+  auto lattice = py::reinterpret_borrow<py::class_<Lattice>>(m.attr("Lattice"));
+  lattice.def(
+      "to_mesh",
+      [](const Lattice& lat, double tolerance, const py::object& progress, const py::object& stats) {
+        steady::LatticeMeshStats s;
+        const steady::TriangleMesh mesh = lattice_mesh_of(lat, tolerance, progress, s);
+        fill(stats, stats_dict(s));
+        return mesh_arrays(mesh);
+      },
+      py::arg("tolerance"), py::arg("progress") = py::none(), py::arg("stats") = py::none(),
+      "The lattice as one closed, outward-oriented triangle mesh with no self-intersection, straight from its "
+      "definition (no B-rep, no Boolean): (vertices float64 N x 3, triangles uint32 M x 3). tolerance: the largest "
+      "distance, in model units, from a triangle to the exact ball or cone it approximates (every vertex lies on the "
+      "exact surface); it must be > 0 and below a quarter of the smallest ball radius. Each distinct hub shape is "
+      "tessellated once per scale level and placed as similar copies. progress: as for brep(). stats: None or a "
+      "dict, filled with hubs, crowded_hubs, beams, distinct_hubs, templates, vertices, triangles, "
+      "template_seconds, placing_seconds.");
+  lattice.def(
+      "write_stl",
+      [](const Lattice& lat, const std::string& path, double tolerance, const std::string& name,
+         const py::object& progress, const py::object& stats) {
+        const steady::LatticeMeshStats s = run_with_progress(progress, [&](steady::Progress& p) {
+          return steady::write_lattice_stl(steady::flatten(lat), {tolerance}, path, name, p);
+        });
+        fill(stats, stats_dict(s));
+      },
+      py::arg("path"), py::arg("tolerance"), py::arg("name") = "lattice", py::arg("progress") = py::none(),
+      py::arg("stats") = py::none(),
+      "Writes the lattice's mesh (see to_mesh) as binary STL, streamed chunk by chunk: the whole mesh is never "
+      "held, so lattices too large for an indexed mesh still reach the printer. Written beside the path and renamed "
+      "when complete: a failure or a cancel leaves no partial file.");
+  lattice.def(
+      "write_obj",
+      [](const Lattice& lat, const std::string& path, double tolerance, const std::string& name,
+         const py::object& progress) {
+        steady::LatticeMeshStats s;
+        const steady::TriangleMesh mesh = lattice_mesh_of(lat, tolerance, progress, s);
+        py::gil_scoped_release release;
+        steady::write_obj(mesh, path, name);
+      },
+      py::arg("path"), py::arg("tolerance"), py::arg("name") = "lattice", py::arg("progress") = py::none(),
+      "Writes the lattice's mesh (see to_mesh) as Wavefront OBJ.");
+  lattice.def(
+      "write_3mf",
+      [](const Lattice& lat, const std::string& path, const py::object& tolerance, bool beam_lattice,
+         const std::string& name, const std::string& unit, const py::object& progress, const py::object& stats) {
+        steady::BeamLatticeOptions options;
+        options.name = name;
+        options.unit = unit;
+        steady::LatticeMeshStats s;
+        steady::TriangleMesh mesh;
+        if (!tolerance.is_none()) mesh = lattice_mesh_of(lat, to_double(tolerance, "tolerance"), progress, s);
+        else if (!beam_lattice) value_error("tolerance", "a mesh 3MF needs a tolerance (a beam lattice does not)");
+        py::dict d = stats_dict(s);
+        if (beam_lattice) {
+          if (!tolerance.is_none()) options.representation = &mesh;
+          const steady::BeamLatticeStats b = run_with_progress(progress, [&](steady::Progress& p) {
+            return steady::write_3mf_beam_lattice(steady::flatten(lat), path, options, p);
+          });
+          d["beams_written"] = b.beams;
+          d["balls_written"] = b.balls;
+          d["lone_balls"] = b.lone_balls;
+          d["bytes"] = b.bytes;
+        } else {
+          py::gil_scoped_release release;
+          steady::write_3mf(mesh, path, options);
+        }
+        fill(stats, d);
+      },
+      py::arg("path"), py::arg("tolerance") = py::none(), py::arg("beam_lattice") = false,
+      py::arg("name") = "lattice", py::arg("unit") = "millimeter", py::arg("progress") = py::none(),
+      py::arg("stats") = py::none(),
+      "Writes a 3MF. beam_lattice=False: the lattice's mesh (see to_mesh; tolerance required) as a core 3MF mesh "
+      "object through lib3mf. beam_lattice=True: the 3MF Beam Lattice extension v1.2, a beam per beam with its two "
+      "radii and a ball per ball (megabytes for a million beams); with a tolerance, the mesh rides along as the "
+      "representation mesh that viewers without beam-lattice support show. unit: micron, millimeter, centimeter, "
+      "inch, foot or meter.");
+  m.def(
+      "read_3mf",
+      [](const std::string& path) {
+        steady::ThreeMfContents c;
+        {
+          py::gil_scoped_release release;
+          c = steady::read_3mf(path);
+        }
+        py::list objects;
+        for (const steady::ThreeMfObject& o : c.objects) {
+          py::dict d;
+          d["id"] = o.id;
+          d["name"] = o.name;
+          const py::tuple arrays = mesh_arrays(o.mesh);
+          d["vertices"] = arrays[0];
+          d["triangles"] = arrays[1];
+          py::list beams;
+          for (const steady::ThreeMfBeam& b : o.beams) beams.append(py::make_tuple(b.v1, b.v2, b.r1, b.r2));
+          d["beams"] = beams;
+          objects.append(d);
+        }
+        py::dict out;
+        out["unit"] = c.unit;
+        out["objects"] = objects;
+        out["warnings"] = c.warnings;
+        return out;
+      },
+      py::arg("path"),
+      "A 3MF file as lib3mf (an independent reader) reads it: {unit, warnings, objects: [{id, name, vertices, "
+      "triangles, beams: [(v1, v2, r1, r2)]}]}.");
+}
+
+}  // namespace steadypy

@@ -1,0 +1,118 @@
+"""The lattice as a mesh and as printer files, through the Python module: closed and oriented meshes with the
+exact volume within the chord bound, files read back by readers we did not write (numpy's parse of the STL
+format, lib3mf), clear errors for bad input and no file left behind."""
+import os
+import struct
+
+import numpy as np
+import pytest
+
+import steadylattice as sl
+from conftest import cubic_lattice
+
+
+def dense_octet(node=0.4, ratio=0.7, counts=(3, 3, 3)):
+    """Issue 17's dense octet: cells of 2, beams `ratio` of their nodes, a slight screw along W."""
+    p = sl.preset("octet")
+    nodes = [(tuple(2.0 * x for x in b), node) for b in p["basis"]]
+    beams = [pattern + (ratio * node, ratio * node) for pattern in p["patterns"]]
+    t = sl.Similarity.translation
+    return sl.Lattice(nodes, beams, counts, t((2, 0, 0)), t((0, 2, 0)),
+                      sl.Similarity.screw(0.02, (0, 0, 1), (1, 1, 0), 2.0))
+
+
+def edge_report(triangles):
+    """(border, non-manifold, misoriented) undirected edges of an indexed triangle list."""
+    directed = np.concatenate([triangles[:, [0, 1]], triangles[:, [1, 2]], triangles[:, [2, 0]]]).astype(np.int64)
+    lo, hi = directed.min(axis=1), directed.max(axis=1)
+    key = lo * (1 << 32) + hi
+    forward = directed[:, 0] < directed[:, 1]
+    keys, inverse, counts = np.unique(key, return_inverse=True, return_counts=True)
+    forward_counts = np.bincount(inverse, weights=forward, minlength=len(keys))
+    border = int((counts == 1).sum())
+    non_manifold = int((counts > 2).sum())
+    misoriented = int(((counts == 2) & (forward_counts != 1)).sum())
+    return border, non_manifold, misoriented
+
+
+def volume_and_area(vertices, triangles):
+    a, b, c = (vertices[triangles[:, k]] for k in range(3))
+    cross = np.cross(b - a, c - a)
+    return np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0, 0.5 * np.linalg.norm(cross, axis=1).sum()
+
+
+@pytest.mark.parametrize("ratio", [0.4, 0.6, 0.8])
+def test_dense_octet_mesh_is_closed_with_the_exact_volume_within_the_chord_bound(ratio):
+    lat = dense_octet(ratio=ratio)
+    stats = {}
+    tolerance = 0.01
+    vertices, triangles = lat.to_mesh(tolerance, stats=stats)
+    assert vertices.dtype == np.float64 and vertices.shape[1] == 3
+    assert triangles.dtype == np.uint32 and triangles.shape[1] == 3
+    assert edge_report(triangles) == (0, 0, 0)
+    volume, area = volume_and_area(vertices, triangles)
+    exact = lat.properties()["volume"]
+    assert exact - tolerance * area <= volume <= exact * (1 + 1e-9), (volume, exact, tolerance * area)
+    assert stats["triangles"] == len(triangles) and stats["templates"] < stats["hubs"]
+
+
+def read_binary_stl(path):
+    """A binary STL parsed with numpy from the format's definition (not with our reader)."""
+    with open(path, "rb") as f:
+        data = f.read()
+    (count,) = struct.unpack_from("<I", data, 80)
+    assert len(data) == 84 + 50 * count
+    records = np.frombuffer(data, dtype=np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")]),
+                            offset=84, count=count)
+    corners = records["v"].reshape(-1, 3)
+    unique, index = np.unique(corners, axis=0, return_inverse=True)
+    return unique.astype(np.float64), index.reshape(-1, 3).astype(np.uint32)
+
+
+def test_stl_streamed_from_the_lattice_reads_back_closed(tmp_path):
+    lat = dense_octet(ratio=0.6)
+    path = str(tmp_path / "octet.stl")
+    stats = {}
+    lat.write_stl(path, 0.01, name="dense octet", stats=stats)
+    vertices, triangles = read_binary_stl(path)
+    assert len(triangles) == stats["triangles"]
+    assert edge_report(triangles) == (0, 0, 0)
+    v_mesh, t_mesh = lat.to_mesh(0.01)
+    assert volume_and_area(vertices, triangles)[0] == pytest.approx(volume_and_area(v_mesh, t_mesh)[0], rel=1e-5)
+    assert not os.path.exists(path + ".partial")
+
+
+def test_3mf_mesh_and_beam_lattice_read_back_by_lib3mf(tmp_path):
+    lat = dense_octet(ratio=0.6, counts=(2, 2, 2))
+    mesh_path, beams_path = str(tmp_path / "mesh.3mf"), str(tmp_path / "beams.3mf")
+    lat.write_3mf(mesh_path, 0.02, name="octet", unit="millimeter")
+    back = sl.read_3mf(mesh_path)
+    assert back["warnings"] == [] and back["unit"] == "millimeter"
+    (obj,) = back["objects"]
+    assert obj["name"] == "octet" and edge_report(obj["triangles"]) == (0, 0, 0)
+    stats = {}
+    lat.write_3mf(beams_path, beam_lattice=True, stats=stats)
+    back = sl.read_3mf(beams_path)
+    (obj,) = back["objects"]
+    a, b = lat.beams()[:2]  # arrays of the beams' end balls
+    assert len(obj["beams"]) == len(a) == stats["beams_written"]
+    assert [(v1, v2) for v1, v2, _, _ in obj["beams"]] == list(zip(a.tolist(), b.tolist()))
+    radii = np.array([(b[2], b[3]) for b in obj["beams"]])
+    assert np.allclose(radii, 0.6 * 0.4, rtol=1e-7)
+
+
+def test_bad_tolerance_path_unit_and_cancel_leave_nothing_behind(tmp_path):
+    lat = cubic_lattice()
+    for tolerance in (0.0, -0.01, float("nan"), 1.0):
+        with pytest.raises(ValueError, match="tolerance"):
+            lat.to_mesh(tolerance)
+    with pytest.raises(ValueError, match="path"):
+        lat.write_stl(str(tmp_path / "missing" / "a.stl"), 0.01)
+    with pytest.raises(ValueError, match="unit"):
+        lat.write_3mf(str(tmp_path / "a.3mf"), 0.01, unit="furlong")
+    with pytest.raises(ValueError, match="tolerance"):
+        lat.write_3mf(str(tmp_path / "a.3mf"))
+    path = str(tmp_path / "cancelled.stl")
+    with pytest.raises(sl.Cancelled):
+        lat.write_stl(path, 0.005, progress=lambda fraction: False)
+    assert os.listdir(tmp_path) == []
