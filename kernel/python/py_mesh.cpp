@@ -49,6 +49,31 @@ py::tuple mesh_arrays(const steady::TriangleMesh& mesh) {
   return py::make_tuple(vertices, triangles);
 }
 
+// (vertices N x 3, triangles M x 3) from Python into a kernel mesh; ValueError naming `name` otherwise.
+steady::TriangleMesh to_triangle_mesh(const py::object& value, const std::string& name) {
+  if (!py::isinstance<py::tuple>(value) && !py::isinstance<py::list>(value))
+    value_error(name, "expected (vertices, triangles): an N x 3 array of points and an M x 3 array of indices");
+  const py::sequence pair = value.cast<py::sequence>();
+  if (pair.size() != 2) value_error(name, "expected (vertices, triangles)");
+  bool single = false;
+  const py::array_t<double> points = to_points(pair[0], name + " vertices", 3, &single);
+  const auto indices = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(pair[1]);
+  if (!indices || indices.ndim() != 2 || indices.shape(1) != 3) value_error(name, "triangles must be an M x 3 array of indices");
+  steady::TriangleMesh mesh;
+  const auto p = points.unchecked<2>();
+  for (py::ssize_t i = 0; i < p.shape(0); ++i) mesh.vertices.emplace_back(p(i, 0), p(i, 1), p(i, 2));
+  const auto t = indices.unchecked<2>();
+  for (py::ssize_t i = 0; i < t.shape(0); ++i) {
+    steady::Triangle tri;
+    for (int k = 0; k < 3; ++k) {
+      if (t(i, k) < 0 || t(i, k) >= p.shape(0)) value_error(name, "triangle " + std::to_string(i) + " has an index out of range");
+      tri[k] = static_cast<std::uint32_t>(t(i, k));
+    }
+    mesh.triangles.push_back(tri);
+  }
+  return mesh;
+}
+
 steady::TriangleMesh lattice_mesh_of(const Lattice& lat, double tolerance, const py::object& progress,
                                      steady::LatticeMeshStats& stats) {
   return run_with_progress(progress, [&](steady::Progress& p) {
@@ -104,8 +129,15 @@ void bind_mesh(py::module_& m) {
   lattice.def(
       "write_3mf",
       [](const Lattice& lat, const std::string& path, const py::object& tolerance, bool beam_lattice,
-         const std::string& name, const std::string& unit, const py::object& progress, const py::object& stats) {
+         const std::string& name, const std::string& unit, const py::object& clipping, const py::object& progress,
+         const py::object& stats) {
         steady::BeamLatticeOptions options;
+        steady::TriangleMesh clipping_mesh;
+        if (!clipping.is_none()) {
+          if (!beam_lattice) value_error("clipping", "only a beam lattice is clipped by a mesh");
+          clipping_mesh = to_triangle_mesh(clipping, "clipping");
+          options.clipping = &clipping_mesh;
+        }
         options.name = name;
         options.unit = unit;
         steady::LatticeMeshStats s;
@@ -129,13 +161,14 @@ void bind_mesh(py::module_& m) {
         fill(stats, d);
       },
       py::arg("path"), py::arg("tolerance") = py::none(), py::arg("beam_lattice") = false,
-      py::arg("name") = "lattice", py::arg("unit") = "millimeter", py::arg("progress") = py::none(),
-      py::arg("stats") = py::none(),
+      py::arg("name") = "lattice", py::arg("unit") = "millimeter", py::arg("clipping") = py::none(),
+      py::arg("progress") = py::none(), py::arg("stats") = py::none(),
       "Writes a 3MF. beam_lattice=False: the lattice's mesh (see to_mesh; tolerance required) as a core 3MF mesh "
       "object through lib3mf. beam_lattice=True: the 3MF Beam Lattice extension v1.2, a beam per beam with its two "
       "radii and a ball per ball (megabytes for a million beams); with a tolerance, the mesh rides along as the "
-      "representation mesh that viewers without beam-lattice support show. unit: micron, millimeter, centimeter, "
-      "inch, foot or meter.");
+      "representation mesh that viewers without beam-lattice support show; clipping: None or (vertices, triangles) of "
+      "a closed mesh of the body, written as the lattice's clipping mesh (clippingmode inside: the printer keeps "
+      "what lies inside it). unit: micron, millimeter, centimeter, inch, foot or meter.");
   m.def(
       "read_3mf",
       [](const std::string& path) {

@@ -197,13 +197,15 @@ class DensityTargetCommand:
 class ExportCommand:
     """Exports the selected objects to STEP (one named part per object), BREP or a lattice file (JSON)."""
 
-    FILTERS = "STEP (*.step *.stp);;BREP (*.brep *.brp);;Lattice file (*.json)"
+    FILTERS = ("STEP (*.step *.stp);;BREP (*.brep *.brp);;Lattice file (*.json);;STL mesh (*.stl);;OBJ mesh (*.obj);;"
+               "3MF beam lattice (*.3mf)")
 
     def GetResources(self):
         return {
             "Pixmap": resources.icon("Export"),
             "MenuText": "Export lattice...",
-            "ToolTip": "Export the selected lattices and parts: STEP (named parts), BREP, or the lattice file (JSON)",
+            "ToolTip": "Export the selected lattices and parts: STEP (named parts), BREP, the lattice file (JSON), or "
+                       "for printers STL, OBJ and 3MF beam lattices straight from the lattice",
         }
 
     def IsActive(self):

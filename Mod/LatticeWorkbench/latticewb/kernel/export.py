@@ -1,10 +1,10 @@
 """Writing the workbench's objects to files: STEP (named parts; a LatticePart as an assembly of its skin and its
-lattice), BREP, and the lattice file (JSON)."""
+lattice), BREP, the lattice file (JSON), and printer files (STL, OBJ, 3MF beam lattice: mesh_export)."""
 import os
 
 import FreeCAD
 
-from latticewb.kernel import lattice_part, lattice_shape, steady_lattice
+from latticewb.kernel import lattice_part, lattice_shape, mesh_export, steady_lattice
 from latticewb.utils import types
 from latticewb.utils.progress import LongOperation
 
@@ -48,13 +48,16 @@ def _export_step(objects, path):
         FreeCAD.closeDocument(scratch.Name)
 
 
-def export(objects, path):
+def export(objects, path, tolerance=None):
     """Writes `objects` to `path`; the format follows the extension:
     .step/.stp (STEP, one part per object with its name; a LatticePart alone: its skin and lattice as two parts),
     .brep/.brp (BREP of the compound),
-    .json (the lattice file of a single SteadyLattice).
-    Writing a LatticePart's STEP assembly trims it again, with FreeCAD's progress bar; a cancel raises
-    steadylattice.Cancelled and writes nothing."""
+    .json (the lattice file of a single SteadyLattice),
+    .stl/.obj (a single SteadyLattice's mesh, straight from the kernel, at `tolerance`: the chord error in document
+    units, None for 2 % of the smallest ball radius), .3mf (a 3MF beam lattice of a SteadyLattice with its mesh for
+    viewers, or of a LatticePart clipped by its body's mesh).
+    Writing a LatticePart's STEP assembly trims it again, and meshes take time on large lattices: both show
+    FreeCAD's progress bar; a cancel raises steadylattice.Cancelled and writes nothing."""
     objects = list(objects)
     if not objects:
         raise ValueError("objects: nothing to export")
@@ -69,8 +72,14 @@ def export(objects, path):
             raise ValueError("objects: a .json lattice file holds exactly one SteadyLattice")
         with open(path, "w") as f:
             f.write(steady_lattice.lattice(objects[0]).to_json())
+    elif extension in mesh_export.MESH_EXTENSIONS:
+        if len(objects) != 1:
+            raise ValueError("objects: a %s file holds exactly one lattice" % extension)
+        with LongOperation("Exporting %s" % objects[0].Label) as report:
+            mesh_export.write_mesh_file(objects[0], path, extension, tolerance, report)
     else:
-        raise ValueError("path: unknown format %r (use .step, .stp, .brep, .brp or .json)" % extension)
+        raise ValueError("path: unknown format %r (use .step, .stp, .brep, .brp, .json, .stl, .obj or .3mf)"
+                         % extension)
     if not os.path.isfile(path):
         raise RuntimeError("export: %s was not written" % path)
     return path

@@ -1,0 +1,58 @@
+"""Printer files of the workbench's lattices, straight from the kernel's lattice meshes (no B-rep, no Boolean):
+binary STL (streamed), OBJ, and 3MF as a beam lattice with its mesh riding along for viewers. A LatticePart goes
+to 3MF as a beam lattice clipped by its body's mesh (the printer clips); its trimmed mesh is not made yet."""
+from latticewb.kernel import lattice_part, steady_lattice
+from latticewb.utils import types
+
+MESH_EXTENSIONS = (".stl", ".obj", ".3mf")
+# The representation mesh of a 3MF beam lattice is left out above this many beams (it would dwarf the beams).
+REPRESENTATION_BEAM_LIMIT = 200000
+
+
+def default_tolerance(lattice):
+    """A chord tolerance of 2 % of the smallest ball radius: about 16 segments around a beam as thick as its node."""
+    radii = lattice.balls()[1]
+    return 0.02 * float(radii.min())
+
+
+def body_mesh(obj, tolerance):
+    """(vertices, triangles) of a LatticePart's body tessellated by FreeCAD, in document coordinates."""
+    import numpy as np
+    if obj.Body is None:
+        raise ValueError("Body: a LatticePart needs a body to clip its beam lattice")
+    shape = obj.Body.Shape
+    if shape.isNull() or not shape.Solids:
+        raise ValueError("Body: %s holds no solid" % obj.Body.Label)
+    points, facets = shape.tessellate(tolerance)
+    return (np.array([(p.x, p.y, p.z) for p in points], dtype=float), np.array(facets, dtype=np.int64))
+
+
+def write_mesh_file(obj, path, extension, tolerance=None, report=None):
+    """Writes `obj` (a SteadyLattice, or a LatticePart for .3mf) to `path`. tolerance: the chord tolerance of the
+    mesh in document units (None: default_tolerance). report(fraction) -> False cancels (steadylattice.Cancelled,
+    no file written). Returns the kernel's stats."""
+    stats = {}
+    if types.is_part(obj):
+        if extension != ".3mf":
+            raise ValueError("%s: the trimmed mesh of a LatticePart is not made yet; export it as STEP, or as .3mf "
+                             "(a beam lattice the printer clips by the body)" % obj.Label)
+        lattice, body, _, skin, _ = lattice_part.kernel_request(obj)
+        if skin > 0.0:
+            raise ValueError("%s: a skin is not part of a 3MF beam lattice yet; export it as STEP" % obj.Label)
+        tolerance = tolerance or default_tolerance(lattice)
+        lattice.write_3mf(path, beam_lattice=True, name=obj.Label, clipping=body_mesh(obj, tolerance),
+                          progress=report, stats=stats)
+        return stats
+    if not types.is_lattice(obj):
+        raise ValueError("%s: only a SteadyLattice or a LatticePart is written as a mesh" % obj.Label)
+    lattice = steady_lattice.lattice(obj)
+    tolerance = tolerance or default_tolerance(lattice)
+    if extension == ".stl":
+        lattice.write_stl(path, tolerance, name=obj.Label, progress=report, stats=stats)
+    elif extension == ".obj":
+        lattice.write_obj(path, tolerance, name=obj.Label, progress=report)
+    else:
+        with_mesh = lattice.beam_count <= REPRESENTATION_BEAM_LIMIT
+        lattice.write_3mf(path, tolerance if with_mesh else None, beam_lattice=True, name=obj.Label,
+                          progress=report, stats=stats)
+    return stats

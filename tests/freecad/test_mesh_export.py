@@ -1,0 +1,72 @@
+"""Printer files from the workbench, read back by FreeCAD's own Mesh module (STL, OBJ: a solid, manifold, no
+self-intersection, the exact volume within the chord bound) and by lib3mf (3MF beam lattices, clipped by a
+part's body)."""
+import os
+import tempfile
+import unittest
+
+import FreeCAD
+import Mesh
+
+import steadylattice as sl
+from latticewb import api
+from latticewb.kernel import mesh_export, steady_lattice
+
+
+class MeshExportTest(unittest.TestCase):
+    def setUp(self):
+        self.doc = FreeCAD.newDocument("MeshExportTest")
+        self.folder = tempfile.mkdtemp()
+        # an octet with beams 0.6 of their nodes: crowded hubs, built as radial unions
+        self.lattice = api.make_lattice(self.doc, preset="octet", cells=(2, 2, 2), cell_size=6.0, node_radius=1.0,
+                                        beam_radius=0.6)
+        self.doc.recompute()
+
+    def tearDown(self):
+        FreeCAD.closeDocument(self.doc.Name)
+
+    def test_stl_and_obj_are_solid_meshes_for_freecad(self):
+        kernel_lattice = steady_lattice.lattice(self.lattice)
+        exact = kernel_lattice.properties()["volume"]
+        tolerance = mesh_export.default_tolerance(kernel_lattice)
+        for extension in (".stl", ".obj"):
+            path = api.export([self.lattice], os.path.join(self.folder, "octet" + extension))
+            mesh = Mesh.Mesh(path)
+            self.assertTrue(mesh.isSolid(), extension)
+            self.assertFalse(mesh.hasNonManifolds(), extension)
+            self.assertFalse(mesh.hasSelfIntersections(), extension)
+            self.assertEqual(len(mesh.getSeparateComponents()), 1)
+            self.assertLessEqual(mesh.Volume, exact * (1 + 1e-6))
+            self.assertGreaterEqual(mesh.Volume, exact - tolerance * mesh.Area)
+
+    def test_3mf_beam_lattice_with_its_mesh(self):
+        path = api.export([self.lattice], os.path.join(self.folder, "octet.3mf"))
+        back = sl.read_3mf(path)
+        representation, lattice = back["objects"]
+        self.assertEqual(len(lattice["beams"]), self.lattice.BeamCount)
+        self.assertEqual(len(lattice["vertices"]), self.lattice.BallCount)
+        self.assertGreater(len(representation["triangles"]), 0)
+
+    def test_part_goes_to_3mf_clipped_by_its_body(self):
+        body = self.doc.addObject("Part::Cylinder", "Body")
+        body.Radius, body.Height = 5.0, 10.0
+        body.Placement.Base = FreeCAD.Vector(6, 6, 1)
+        part = api.make_part(self.doc, self.lattice, body)
+        self.doc.recompute()
+        path = api.export([part], os.path.join(self.folder, "part.3mf"))
+        clipping, lattice = sl.read_3mf(path)["objects"]
+        self.assertEqual(len(lattice["beams"]), self.lattice.BeamCount)
+        # the body's mesh, closed: every edge used twice
+        edges = {}
+        for t in clipping["triangles"].tolist():
+            for a, b in ((t[0], t[1]), (t[1], t[2]), (t[2], t[0])):
+                key = (min(a, b), max(a, b))
+                edges[key] = edges.get(key, 0) + 1
+        self.assertTrue(edges and all(n == 2 for n in edges.values()))
+        with self.assertRaisesRegex(ValueError, "STEP"):
+            api.export([part], os.path.join(self.folder, "part.stl"))
+        self.assertFalse(os.path.exists(os.path.join(self.folder, "part.stl")))
+
+
+if __name__ == "__main__":
+    unittest.main()
