@@ -93,29 +93,38 @@ void expect_valid_mesh(const Case& c) {
   EXPECT_NEAR(mesh_volume(mesh), check.volume, 1e-9 * exact.volume);
   EXPECT_LE(check.volume, exact.volume * (1.0 + 1e-9));
   EXPECT_GE(check.volume, exact.volume - c.tolerance * area) << "exact " << exact.volume;
-  // Every vertex on the exact surface: the union's inside depth (the largest over the elements of how deep the
-  // point lies in it; a beam is its cone between the two tangent circles) is zero there.
+  // Every vertex on the exact surface, and every triangle within the tolerance of it: the union's inside depth
+  // (the largest over the elements of how deep the point lies in it; a beam is its cone between the two tangent
+  // circles) is zero at the vertices and at most the tolerance at each triangle's centroid and edge midpoints.
   const FlatLattice f = flatten(c.lattice);
-  double worst = 0.0;
-  for (std::size_t v = 0; v < mesh.vertices.size(); v += 7) {
-    const Vec3 p = mesh.vertices[v];
-    double depth = -1e300;
-    for (const Ball& b : f.balls) depth = std::max(depth, b.radius - glm::length(p - b.center));
-    for (const FlatBeam& e : f.beams) {
-      const BeamCone cone = beam_cone({f.balls[e.a].center, e.ra}, {f.balls[e.b].center, e.rb});
-      if (!cone.has_lateral_surface()) continue;
+  std::vector<BeamCone> cones;
+  for (const FlatBeam& e : f.beams) {
+    const BeamCone cone = beam_cone({f.balls[e.a].center, e.ra}, {f.balls[e.b].center, e.rb});
+    if (cone.has_lateral_surface()) cones.push_back(cone);
+  }
+  auto depth = [&](const Vec3& p) {
+    double d = -1e300;
+    for (const Ball& b : f.balls) d = std::max(d, b.radius - glm::length(p - b.center));
+    for (const BeamCone& cone : cones) {
       const Vec3 w = p - cone.a;
       const double x = glm::dot(w, cone.axis), r = glm::length(w - x * cone.axis);
       if (x >= cone.ra * cone.sin_phi - 1e-9 && x <= cone.length + cone.rb * cone.sin_phi + 1e-9)
-        depth = std::max(depth, (cone.radius_at(x) - r) * cone.cos_phi);
+        d = std::max(d, (cone.radius_at(x) - r) * cone.cos_phi);
     }
-    worst = std::max(worst, std::abs(depth));
+    return d;
+  };
+  double off_surface = 0.0, chord = 0.0;
+  for (std::size_t v = 0; v < mesh.vertices.size(); v += 7) off_surface = std::max(off_surface, std::abs(depth(mesh.vertices[v])));
+  for (std::size_t t = 0; t < mesh.triangles.size(); t += 5) {
+    const Vec3 a = mesh.vertices[mesh.triangles[t][0]], b = mesh.vertices[mesh.triangles[t][1]],
+               d = mesh.vertices[mesh.triangles[t][2]];
+    for (const Vec3& p : {(a + b + d) / 3.0, 0.5 * (a + b), 0.5 * (b + d), 0.5 * (d + a)}) chord = std::max(chord, depth(p));
   }
-  // Vertices of crowded hubs lie on the exact surface up to the rounding of their crease points' bisection.
-  EXPECT_LT(worst, 1e-9 * (1.0 + f.balls[0].radius)) << "a vertex off the exact surface";
+  EXPECT_LT(off_surface, 1e-9 * (1.0 + f.balls[0].radius)) << "a vertex off the exact surface";
+  EXPECT_LE(chord, c.tolerance * (1.0 + 1e-9)) << "a triangle farther than the tolerance from the exact surface";
   std::cout << c.name << ": " << mesh.triangles.size() << " triangles, " << stats.distinct_hubs << " distinct hubs, "
             << stats.crowded_hubs << " crowded, " << stats.templates << " templates, volume " << check.volume
-            << " exact " << exact.volume << " (bound " << c.tolerance * area << ")\n";
+            << " exact " << exact.volume << " (bound " << c.tolerance * area << "), deviation " << chord << "\n";
 }
 
 TEST(LatticeMesh, PresetsThinBeamsAreClosedManifolds) {

@@ -228,6 +228,52 @@ std::vector<Vec3> crease_points(const RadialHub& hub, const std::vector<Vec3>& a
   return creases;
 }
 
+// Refinement rounds at most: each round splits every triangle still beyond the tolerance, which divides its error
+// by about four, so a handful suffices from the even start.
+constexpr int kRefinementRounds = 12;
+
+// Triangulates the directions and refines the triangulation until every triangle lies within `tolerance` of the
+// surface it stands for. The surface point along direction w is radius(w) w (ring points: their exact position);
+// a triangle's error is measured at its centroid and edge midpoints (as directions): the distance from the surface
+// point to the triangle's plane. The worst such direction of every triangle beyond the tolerance becomes a new
+// point, and the directions are triangulated again. Directions for which in_hole(w) holds (a cap or a collar's
+// cone, whose polygon is dropped) are never added.
+template <class Radius, class InHole>
+std::vector<Triangle> refined_triangulation(std::vector<Vec3>& directions, std::vector<int>& ring_of,
+                                            const std::vector<std::vector<std::uint32_t>>& rings,
+                                            const std::vector<Vec3>& ring_points, const Radius& radius,
+                                            const InHole& in_hole, double tolerance) {
+  std::vector<Vec3> position;
+  for (int round = 0;; ++round) {
+    for (std::size_t i = position.size(); i < directions.size(); ++i)
+      position.push_back(ring_of[i] >= 0 ? ring_points[i] : radius(directions[i]) * directions[i]);
+    std::vector<Triangle> triangles = without_ring_caps(sphere_triangulation(directions), ring_of, rings);
+    if (round == kRefinementRounds) return triangles;
+    std::map<std::array<double, 3>, Vec3> added;
+    for (const Triangle& t : triangles) {
+      const Vec3 &d0 = directions[t[0]], &d1 = directions[t[1]], &d2 = directions[t[2]];
+      const Vec3 p0 = position[t[0]];
+      const Vec3 normal = glm::cross(position[t[1]] - p0, position[t[2]] - p0);
+      const double area2 = glm::length(normal);
+      if (!(area2 > 0.0)) continue;
+      double worst = tolerance;
+      Vec3 at(0.0);
+      for (const Vec3& sum : {d0 + d1 + d2, d0 + d1, d1 + d2, d2 + d0}) {
+        const Vec3 w = glm::normalize(sum);
+        if (in_hole(w)) continue;
+        const double error = std::abs(glm::dot(radius(w) * w - p0, normal)) / area2;
+        if (error > worst) worst = error, at = w;
+      }
+      if (worst > tolerance) added.emplace(std::array<double, 3>{at.x, at.y, at.z}, at);
+    }
+    if (added.empty()) return triangles;
+    for (const auto& [key, w] : added) {
+      directions.push_back(w);
+      ring_of.push_back(-1);
+    }
+  }
+}
+
 }  // namespace
 
 int tolerance_level(double relative_tolerance) {
@@ -272,25 +318,27 @@ HubTemplate tessellate_clean_hub(const std::vector<SphereCap>& caps, double tole
       ring_of.push_back(-1);
     }
   }
-  out.triangles = without_ring_caps(sphere_triangulation(out.vertices), ring_of, out.loops);
+  auto in_cap = [&](const Vec3& w) {
+    for (const SphereCap& c : caps)
+      if (glm::dot(w, c.direction) >= c.exit) return true;
+    return false;
+  };
+  out.triangles = refined_triangulation(out.vertices, ring_of, out.loops, out.vertices,
+                                        [](const Vec3&) { return 1.0; }, in_cap, tolerance);
   return out;
 }
 
 HubTemplate tessellate_crowded_hub(const std::vector<CoreStump>& stumps, const std::vector<double>& collars,
                                    double tolerance) {
   const RadialHub hub{stumps, collars};
-  // Directions are spaced for the most curved piece: a stump of radius rho seen from up to `far` away.
-  double rho_min = 1.0, far = 1.0;
+  // Directions start evenly spaced as on a clean hub; refinement adds them where the stumps curve more.
   std::vector<Vec3> axes;
   std::vector<double> collar_angle;
   for (std::size_t k = 0; k < stumps.size(); ++k) {
     axes.push_back(glm::normalize(stumps[k].direction));
-    const double rc = stumps[k].radius_at(collars[k]);
-    rho_min = std::min({rho_min, rc, stumps[k].radius_at(std::max(stumps[k].exit, 0.0))});
-    far = std::max(far, std::hypot(collars[k], rc));
-    collar_angle.push_back(std::atan2(rc, collars[k]));
+    collar_angle.push_back(std::atan2(stumps[k].radius_at(collars[k]), collars[k]));
   }
-  const double spacing = point_spacing(tolerance * rho_min / (far * far));
+  const double spacing = point_spacing(tolerance);
   HubTemplate out;
   std::vector<Vec3> directions;
   std::vector<int> ring_of;
@@ -341,7 +389,14 @@ HubTemplate tessellate_crowded_hub(const std::vector<CoreStump>& stumps, const s
       ring_of.push_back(-1);
     }
   }
-  out.triangles = without_ring_caps(sphere_triangulation(directions), ring_of, out.loops);
+  auto in_collar = [&](const Vec3& w) {
+    for (std::size_t k = 0; k < axes.size(); ++k)
+      if (std::acos(std::clamp(glm::dot(w, axes[k]), -1.0, 1.0)) <= collar_angle[k]) return true;
+    return false;
+  };
+  ring_points.resize(directions.size());
+  out.triangles = refined_triangulation(directions, ring_of, out.loops, ring_points,
+                                        [&](const Vec3& w) { return hub.radius(w); }, in_collar, tolerance);
   // Each direction to its point on the boundary: the radial image of a sphere triangulation is embedded (every
   // triangle keeps its own cone of directions), closed but for the collar holes, and outward.
   out.vertices.resize(directions.size());
