@@ -68,5 +68,52 @@ class MeshExportTest(unittest.TestCase):
         self.assertFalse(os.path.exists(os.path.join(self.folder, "part.stl")))
 
 
+class LatticeMeshFeatureTest(unittest.TestCase):
+    def setUp(self):
+        self.doc = FreeCAD.newDocument("LatticeMeshTest")
+        self.lattice = api.make_lattice(self.doc, preset="BCC", cells=(3, 3, 3), cell_size=6.0, node_radius=1.0,
+                                        beam_radius=0.5)
+        self.doc.recompute()
+
+    def tearDown(self):
+        FreeCAD.closeDocument(self.doc.Name)
+
+    def test_mesh_feature_follows_its_lattice_and_survives_reload(self):
+        mesh = api.make_mesh(self.doc, self.lattice, tolerance=0.02)
+        self.doc.recompute()
+        self.assertEqual(api.get_type(mesh), "LatticeMesh")
+        self.assertTrue(mesh.Mesh.isSolid() and not mesh.Mesh.hasNonManifolds())
+        self.assertEqual(mesh.Mesh.CountFacets, mesh.TriangleCount)
+        exact = steady_lattice.lattice(self.lattice).properties()["volume"]
+        self.assertLessEqual(mesh.Volume, exact)
+        self.assertGreaterEqual(mesh.Volume, exact - 0.02 * mesh.Mesh.Area)
+        # editing the lattice re-meshes
+        before = mesh.Volume
+        self.lattice.NodeRadius = 1.2
+        self.doc.recompute()
+        self.assertGreater(mesh.Volume, before)
+        # nonsense: a tolerance larger than a quarter of the balls is an error with a message, the document stays
+        mesh.Tolerance = 5.0
+        self.doc.recompute()
+        self.assertIn("Invalid", mesh.State)
+        mesh.Tolerance = 0.02
+        self.doc.recompute()
+        self.assertNotIn("Invalid", mesh.State)
+        path = os.path.join(tempfile.mkdtemp(), "mesh.FCStd")
+        name = mesh.Name
+        self.doc.saveAs(path)
+        FreeCAD.closeDocument(self.doc.Name)
+        self.doc = FreeCAD.openDocument(path)
+        restored = self.doc.getObject(name)
+        self.assertEqual(api.get_type(restored), "LatticeMesh")
+        self.assertEqual(restored.Mesh.CountFacets, restored.TriangleCount)
+
+    def test_bad_input(self):
+        with self.assertRaisesRegex(ValueError, "tolerance"):
+            api.make_mesh(self.doc, self.lattice, tolerance=-1.0)
+        with self.assertRaisesRegex(ValueError, "lattice"):
+            api.make_mesh(self.doc, None)
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -9,7 +9,7 @@
 
 This module only gathers the workbench's public functions; they live in their layers (make, kernel).
 """
-__all__ = ["make_lattice", "make_part", "make_filter", "properties", "target_density", "lattice", "ball_index_of",
+__all__ = ["make_lattice", "make_part", "make_filter", "make_mesh", "properties", "target_density", "lattice", "ball_index_of",
            "export", "export_shape", "get_type"]
 
 from latticewb.kernel import mass as _mass
@@ -17,6 +17,7 @@ from latticewb.kernel.export import export, export_shape  # noqa: F401
 from latticewb.kernel.steady_lattice import lattice  # noqa: F401
 from latticewb.make.make_filter import make_filter  # noqa: F401
 from latticewb.make.make_lattice import make_lattice  # noqa: F401
+from latticewb.make.make_mesh import make_mesh  # noqa: F401
 from latticewb.make.make_part import make_part  # noqa: F401
 from latticewb.utils import types as _types
 from latticewb.utils.types import get_type  # noqa: F401

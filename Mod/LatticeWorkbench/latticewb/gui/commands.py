@@ -83,6 +83,32 @@ class LatticePartCommand:
         _create(doc, "Lattice part", lambda: api.make_part(doc, lattices[0], bodies[0] if bodies else None))
 
 
+class MeshCommand:
+    """Meshes the selected lattice straight from the kernel: a closed mesh for printing or for lattices too large
+    for a B-rep."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": resources.icon("LatticeMesh"),
+            "MenuText": "Lattice mesh",
+            "ToolTip": "Mesh the selected steady lattice straight from the kernel (no B-rep): one closed, oriented "
+                       "mesh, every triangle within Tolerance of the exact surface. For printing (export STL or "
+                       "3MF) and for lattices too large for a solid",
+        }
+
+    def IsActive(self):
+        return any(types.is_lattice(o) for o in FreeCADGui.Selection.getSelection())
+
+    def Activated(self):
+        from latticewb import api
+        lattices = [o for o in FreeCADGui.Selection.getSelection() if types.is_lattice(o)]
+        if len(lattices) != 1:
+            FreeCAD.Console.PrintError("Lattice mesh: select one steady lattice\n")
+            return
+        doc = FreeCAD.ActiveDocument
+        _create(doc, "Lattice mesh", lambda: api.make_mesh(doc, lattices[0]))
+
+
 class FilterCommand:
     """Filters the selected lattice. With a second lattice selected: Lattice-in-Lattice (keep the nodes whose balls
     meet it); with a solid selected: keep the nodes inside it; otherwise a stencil, editable in the property editor
@@ -234,6 +260,7 @@ class ExportCommand:
 COMMANDS = {
     "Lattice_NewLattice": NewLatticeCommand(),
     "Lattice_Part": LatticePartCommand(),
+    "Lattice_Mesh": MeshCommand(),
     "Lattice_Filter": FilterCommand(),
     "Lattice_Properties": PropertiesCommand(),
     "Lattice_DensityTarget": DensityTargetCommand(),
@@ -243,6 +270,6 @@ COMMANDS = {
 for _name, _command in COMMANDS.items():
     FreeCADGui.addCommand(_name, _command)
 
-TOOLBAR = ["Lattice_NewLattice", "Lattice_Filter", "Lattice_Part", "Separator", "Lattice_Properties",
+TOOLBAR = ["Lattice_NewLattice", "Lattice_Filter", "Lattice_Part", "Lattice_Mesh", "Separator", "Lattice_Properties",
            "Lattice_DensityTarget", "Separator", "Lattice_Export"]
 MENU = TOOLBAR

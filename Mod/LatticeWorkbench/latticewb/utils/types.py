@@ -5,10 +5,11 @@ recognised too: their proxies are instances of the same classes)."""
 STEADY_LATTICE = "SteadyLattice"
 LATTICE_FILTER = "LatticeFilter"
 LATTICE_PART = "LatticePart"
+LATTICE_MESH = "LatticeMesh"
 
 
 def get_type(obj):
-    """The workbench type tag of `obj` ("SteadyLattice", "LatticeFilter", "LatticePart"), or None."""
+    """The workbench type tag of `obj` ("SteadyLattice", "LatticeFilter", "LatticePart", "LatticeMesh"), or None."""
     proxy = getattr(obj, "Proxy", None) if obj is not None else None
     return getattr(proxy, "Type", None)
 
@@ -24,3 +25,7 @@ def is_lattice_source(obj):
 
 def is_part(obj):
     return get_type(obj) == LATTICE_PART
+
+
+def is_mesh(obj):
+    return get_type(obj) == LATTICE_MESH

@@ -86,6 +86,20 @@ class ViewProviderLatticePart(InputsAsChildren, StatelessProxy):
         return resources.icon("LatticePart")
 
 
+class ViewProviderLatticeMesh(InputsAsChildren, StatelessProxy):
+    """A LatticeMesh shows its lattice as a child; the mesh draws itself (FreeCAD's mesh view provider)."""
+    inputs = ("Lattice",)
+
+    def __init__(self, vobj):
+        vobj.Proxy = self
+
+    def attach(self, vobj):
+        self.Object = vobj.Object
+
+    def getIcon(self):
+        return resources.icon("LatticeMesh")
+
+
 class ViewProviderLatticeFilter(InputsAsChildren, ViewProviderLatticePreview):
     inputs = ("Source", "Coarse")
 
