@@ -14,7 +14,7 @@ PACKAGES=(
   # mesh algorithms (CGAL 5.5, header-only, needs GMP/MPFR)
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   # bindings and Python side
-  python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest
+  python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-pil
   # maths, parallelism, formats
   libglm-dev libtbb-dev lib3mf-dev libzip-dev zlib1g-dev nlohmann-json3-dev
   # tests and benchmarks

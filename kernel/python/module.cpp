@@ -18,6 +18,7 @@ void bind_queries(py::module_& m);
 void bind_properties(py::module_& m);
 void bind_presets(py::module_& m);
 void bind_mesh(py::module_& m);
+void bind_slices(py::module_& m);
 }  // namespace steadypy
 
 PYBIND11_MODULE(steadylattice, m) {
@@ -48,4 +49,5 @@ PYBIND11_MODULE(steadylattice, m) {
   steadypy::bind_properties(m);
   steadypy::bind_presets(m);
   steadypy::bind_mesh(m);
+  steadypy::bind_slices(m);
 }
