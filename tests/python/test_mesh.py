@@ -112,7 +112,8 @@ def test_bad_tolerance_path_unit_and_cancel_leave_nothing_behind(tmp_path):
         lat.write_3mf(str(tmp_path / "a.3mf"), 0.01, unit="furlong")
     with pytest.raises(ValueError, match="tolerance"):
         lat.write_3mf(str(tmp_path / "a.3mf"))
+    # progress is reported about every 0.1 s: a mesh that takes longer than that, cancelled at its first report
     path = str(tmp_path / "cancelled.stl")
     with pytest.raises(sl.Cancelled):
-        lat.write_stl(path, 0.005, progress=lambda fraction: False)
+        dense_octet(ratio=0.6, counts=(6, 6, 6)).write_stl(path, 0.002, progress=lambda fraction: False)
     assert os.listdir(tmp_path) == []

@@ -52,5 +52,7 @@ def test_bad_input_names_the_parameter(tmp_path):
         lat.write_slices(str(tmp_path / "missing"), 0.1, 0.05)
     with pytest.raises(MemoryError):
         lat.slice(1.0, 1e-9)
+    # progress is reported about every 0.1 s: a stack that takes longer than that, cancelled at its first report
     with pytest.raises(sl.Cancelled):
-        lat.write_slices(str(tmp_path), 0.1, 0.05, progress=lambda f: False)
+        dense_octet(ratio=0.6, counts=(4, 4, 4)).write_slices(str(tmp_path), 0.005, 0.005, progress=lambda f: False)
+    assert os.listdir(tmp_path) == []

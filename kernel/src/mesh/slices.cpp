@@ -285,23 +285,35 @@ SliceStats write_slices(const FlatLattice& lattice, const SliceOptions& options,
     std::snprintf(buffer, sizeof(buffer), "/layer_%05lld.%s", static_cast<long long>(k), extension);
     return directory + buffer;
   };
-  tbb::parallel_for(std::int64_t(0), stats.layers, [&](std::int64_t k) {
-    progress.check();
-    std::vector<std::uint8_t> pixels;
-    const auto t0 = std::chrono::steady_clock::now();
-    element_layers += slicer.rasterize(k, pixels);
-    const auto t1 = std::chrono::steady_clock::now();
-    write_png(name(k, "png"), pixels, slicer.width(), slicer.height());
-    if (svg) {
-      PartialFile file(name(k, "svg"));
-      file.write(slicer.svg(k));
-      file.commit();
-    }
-    const auto t2 = std::chrono::steady_clock::now();
-    raster_ns += std::chrono::duration_cast<std::chrono::nanoseconds>(t1 - t0).count();
-    write_ns += std::chrono::duration_cast<std::chrono::nanoseconds>(t2 - t1).count();
-    progress.advance();
-  });
+  // A stack is complete or absent: on an error or a cancel, the layers already written are removed again.
+  std::vector<char> written(static_cast<std::size_t>(stats.layers), 0);
+  try {
+    tbb::parallel_for(std::int64_t(0), stats.layers, [&](std::int64_t k) {
+      progress.check();
+      std::vector<std::uint8_t> pixels;
+      const auto t0 = std::chrono::steady_clock::now();
+      element_layers += slicer.rasterize(k, pixels);
+      const auto t1 = std::chrono::steady_clock::now();
+      write_png(name(k, "png"), pixels, slicer.width(), slicer.height());
+      if (svg) {
+        PartialFile file(name(k, "svg"));
+        file.write(slicer.svg(k));
+        file.commit();
+      }
+      const auto t2 = std::chrono::steady_clock::now();
+      written[k] = 1;
+      raster_ns += std::chrono::duration_cast<std::chrono::nanoseconds>(t1 - t0).count();
+      write_ns += std::chrono::duration_cast<std::chrono::nanoseconds>(t2 - t1).count();
+      progress.advance();
+    });
+  } catch (...) {
+    for (std::int64_t k = 0; k < stats.layers; ++k)
+      if (written[k]) {
+        std::remove(name(k, "png").c_str());
+        if (svg) std::remove(name(k, "svg").c_str());
+      }
+    throw;
+  }
   stats.element_layers = element_layers;
   stats.raster_seconds = raster_ns * 1e-9;  // summed over the threads
   stats.write_seconds = write_ns * 1e-9;

@@ -67,7 +67,8 @@ struct SliceStats {
 };
 
 // Writes every layer into `directory` (which must exist) as layer_00000.png, ... (1-bit grayscale PNG, white =
-// solid) and, with svg, layer_00000.svg too; files are written beside their names and renamed when complete.
+// solid) and, with svg, layer_00000.svg too; files are written beside their names and renamed when complete, and
+// an error or a cancel removes the layers already written (a stack is complete or absent).
 SliceStats write_slices(const FlatLattice& lattice, const SliceOptions& options, const std::string& directory,
                         bool svg = false, Progress& progress = no_progress());
 
