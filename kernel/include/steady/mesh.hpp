@@ -8,3 +8,4 @@
 #include "steady/mesh/slices.hpp"
 #include "steady/mesh/threemf_reader.hpp"
 #include "steady/mesh/triangle_mesh.hpp"
+#include "steady/mesh/trimmed_mesh.hpp"

@@ -56,6 +56,8 @@ void check_clean_for_mesh(const FlatLattice& f) {
   fail_input("lattice", os.str());
 }
 
+}  // namespace
+
 // The strip between loop a (counterclockwise about the beam's axis) and loop b (given counterclockwise about the
 // opposite direction, as hub b sees its stump): the two polygons merged by angle about the axis, so every
 // triangle spans at most one segment of each circle.
@@ -97,8 +99,6 @@ void strip_triangles(const std::vector<Vec3>& va, const std::vector<std::uint32_
     }
   }
 }
-
-}  // namespace
 
 MeshPlan plan_lattice_mesh(const FlatLattice& f, const MeshOptions& options, Progress& progress) {
   MeshPlan plan;

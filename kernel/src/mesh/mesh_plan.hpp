@@ -50,6 +50,10 @@ void place_hub(const MeshPlan& plan, std::size_t h, Vec3* vertices, Triangle* tr
 // Beam e's strip (strip_size(e) triangles, indices into the whole mesh's vertices) into `triangles`.
 std::size_t strip_size(const MeshPlan& plan, std::int64_t e);
 void place_strip(const MeshPlan& plan, std::int64_t e, Triangle* triangles);
+// The strip between loop a (points va, mesh indices ia, counterclockwise about the beam's axis) and loop b (given
+// counterclockwise about the opposite direction, as hub b sees its stump): ia.size() + ib.size() triangles.
+void strip_triangles(const std::vector<Vec3>& va, const std::vector<std::uint32_t>& ia, const std::vector<Vec3>& vb,
+                     std::vector<std::uint32_t> ib, const Vec3& axis, const Vec3& center, Triangle* out);
 // The same strip as corner coordinates (what a streamed STL needs).
 void place_strip_corners(const MeshPlan& plan, std::int64_t e, std::array<Vec3, 3>* corners);
 

@@ -1,0 +1,155 @@
+// Lattices trimmed into a body as meshes, with and without a skin: closed, oriented, no self-intersection (CGAL's
+// own checks), and the volume of lattice ∩ body (∪ skin) by Monte Carlo over point membership (the slow twin)
+// within the chord bound.
+#include <gtest/gtest.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <random>
+
+#include "steady/core/errors.hpp"
+#include "steady/lattice/flat_lattice.hpp"
+#include "steady/lattice/presets.hpp"
+#include "steady/mesh/trimmed_mesh.hpp"
+#include "steady/query/lattice_query.hpp"
+#include "steady/query/queries.hpp"
+
+namespace steady {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+// A closed, outward prism over a regular n-gon (n = 4: a box turned by `turn`), between heights z0 and z1.
+TriangleMesh prism(const Vec3& center, double radius, double z0, double z1, int n, double turn) {
+  TriangleMesh m;
+  for (double z : {z0, z1})
+    for (int i = 0; i < n; ++i) {
+      const double a = turn + 2.0 * M_PI * i / n;
+      m.vertices.emplace_back(center.x + radius * std::cos(a), center.y + radius * std::sin(a), z);
+    }
+  const auto bottom = static_cast<std::uint32_t>(m.vertices.size());
+  m.vertices.emplace_back(center.x, center.y, z0);
+  m.vertices.emplace_back(center.x, center.y, z1);
+  const auto N = static_cast<std::uint32_t>(n);
+  for (std::uint32_t i = 0; i < N; ++i) {
+    const std::uint32_t j = (i + 1) % N;
+    m.triangles.push_back({i, j, N + j});
+    m.triangles.push_back({i, N + j, N + i});
+    m.triangles.push_back({bottom, j, i});
+    m.triangles.push_back({bottom + 1, N + i, N + j});
+  }
+  return m;
+}
+
+bool inside_prism(const Vec3& p, const Vec3& center, double radius, double z0, double z1, int n, double turn) {
+  if (p.z < z0 || p.z > z1) return false;
+  for (int i = 0; i < n; ++i) {  // inside every edge's half-plane
+    const double a = turn + 2.0 * M_PI * i / n, b = turn + 2.0 * M_PI * (i + 1) / n;
+    const Vec3 u(radius * std::cos(a), radius * std::sin(a), 0.0), v(radius * std::cos(b), radius * std::sin(b), 0.0);
+    const Vec3 q = p - center;
+    if ((v.x - u.x) * (q.y - u.y) - (v.y - u.y) * (q.x - u.x) < 0.0) return false;
+  }
+  return true;
+}
+
+struct Prism {
+  Vec3 center;
+  double radius, z0, z1;
+  int n;
+  double turn;
+  TriangleMesh mesh(double inset = 0.0) const {
+    return prism(center, (radius - inset / std::cos(M_PI / n)), z0 + inset, z1 - inset, n, turn);
+  }
+  bool contains(const Vec3& p, double inset = 0.0) const {
+    return inside_prism(p, center, radius - inset / std::cos(M_PI / n), z0 + inset, z1 - inset, n, turn);
+  }
+};
+
+void expect_trimmed(const Lattice& lattice, const Prism& body, double skin, double tolerance, const std::string& what) {
+  SCOPED_TRACE(what);
+  const FlatLattice f = flatten(lattice);
+  const TriangleMesh outer = body.mesh(), inner = body.mesh(skin);
+  TrimmedMeshRequest request;
+  request.body = &outer;
+  if (skin > 0.0) request.inner = &inner;
+  TrimmedMeshStats stats;
+  const TriangleMesh mesh = trimmed_lattice_mesh(f, {tolerance}, request, &stats);
+  EXPECT_GT(stats.crossing_hubs, 0);
+  EXPECT_TRUE(mesh_edge_report(mesh).closed_manifold());
+  std::vector<K::Point_3> points;
+  for (const Vec3& v : mesh.vertices) points.emplace_back(v.x, v.y, v.z);
+  std::vector<std::vector<std::size_t>> polygons;
+  for (const Triangle& t : mesh.triangles) polygons.push_back({t[0], t[1], t[2]});
+  CGAL::Surface_mesh<K::Point_3> sm;
+  CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, polygons, sm);
+  EXPECT_FALSE(CGAL::Polygon_mesh_processing::does_self_intersect(sm));
+  // Monte Carlo over the body's bounding box with point membership.
+  const LatticeQuery query(lattice);
+  const LatticeSource source(query);
+  const Vec3 lo(body.center.x - body.radius, body.center.y - body.radius, body.z0);
+  const Vec3 hi(body.center.x + body.radius, body.center.y + body.radius, body.z1);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  const int n = 300000;
+  std::vector<double> p(3 * n);
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k) p[3 * i + k] = lo[k] + (hi[k] - lo[k]) * u01(rng);
+  std::vector<std::uint8_t> in(n);
+  contains(source, p.data(), n, in.data());
+  int hits = 0;
+  for (int i = 0; i < n; ++i) {
+    const Vec3 x(p[3 * i], p[3 * i + 1], p[3 * i + 2]);
+    if (!body.contains(x)) continue;
+    hits += skin > 0.0 ? (!body.contains(x, skin) || in[i]) : in[i];
+  }
+  const double box = (hi.x - lo.x) * (hi.y - lo.y) * (hi.z - lo.z), fraction = double(hits) / n;
+  const double expected = box * fraction, sigma = box * std::sqrt(fraction * (1.0 - fraction) / n);
+  const double volume = mesh_volume(mesh);
+  EXPECT_LE(volume, expected + 4.0 * sigma);
+  EXPECT_GE(volume, expected - 4.0 * sigma - tolerance * mesh_area(mesh));
+  std::cout << what << ": " << mesh.triangles.size() << " triangles, hubs inside / crossing / outside "
+            << stats.inside_hubs << " / " << stats.crossing_hubs << " / " << stats.outside_hubs << ", band "
+            << stats.band_triangles << " triangles, Booleans " << stats.boolean_seconds << " s; volume " << volume
+            << ", Monte Carlo " << expected << " +- " << sigma << "\n";
+}
+
+TEST(TrimmedMesh, OctetInATurnedBoxAndAPrismWithAndWithoutSkin) {
+  const Lattice octet = preset_lattice("octet", {3, 3, 3}, 2.0, 0.3, 0.15);
+  const Prism box{{2.9, 2.8, 0.0}, 3.3, 0.6, 4.9, 4, 0.3};
+  const Prism hexagon{{3.0, 3.0, 0.0}, 2.9, 0.45, 5.2, 6, 0.1};
+  for (double skin : {0.0, 0.35}) {
+    expect_trimmed(octet, box, skin, 0.01, "box, skin " + std::to_string(skin));
+    expect_trimmed(octet, hexagon, skin, 0.01, "hexagon, skin " + std::to_string(skin));
+  }
+}
+
+TEST(TrimmedMesh, CrowdedAndHullModelHubs) {
+  const Prism hexagon{{3.0, 3.0, 0.0}, 2.9, 0.45, 5.2, 6, 0.1};
+  expect_trimmed(preset_lattice("octet", {3, 3, 3}, 2.0, 0.3, 0.24), hexagon, 0.0, 0.01, "thick octet");
+  expect_trimmed(preset_lattice("BCC", {3, 3, 3}, 2.0, 0.25, 0.0), hexagon, 0.3, 0.01, "hull BCC, skin");
+}
+
+TEST(TrimmedMesh, BadBodiesNameTheParameter) {
+  const FlatLattice f = flatten(preset_lattice("cubic", {2, 2, 2}, 2.0, 0.3, 0.1));
+  TriangleMesh open = prism({2, 2, 0}, 2.0, 0.5, 3.0, 4, 0.0);
+  open.triangles.pop_back();
+  TriangleMesh inward = prism({2, 2, 0}, 2.0, 0.5, 3.0, 4, 0.0);
+  for (Triangle& t : inward.triangles) std::swap(t[1], t[2]);
+  for (const TriangleMesh* bad : {&open, &inward}) {
+    TrimmedMeshRequest r;
+    r.body = bad;
+    try {
+      trimmed_lattice_mesh(f, {0.01}, r);
+      FAIL() << "accepted a bad body";
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find("body"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_THROW(trimmed_lattice_mesh(f, {0.01}, TrimmedMeshRequest{}), InvalidInput);
+}
+
+}  // namespace
+}  // namespace steady
