@@ -12,6 +12,7 @@
 #include "steady/mesh/lattice_mesh.hpp"
 #include "steady/mesh/mesh_files.hpp"
 #include "steady/mesh/threemf_reader.hpp"
+#include "steady/mesh/trimmed_mesh.hpp"
 
 namespace steadypy {
 
@@ -74,12 +75,45 @@ steady::TriangleMesh to_triangle_mesh(const py::object& value, const std::string
   return mesh;
 }
 
-steady::TriangleMesh lattice_mesh_of(const Lattice& lat, double tolerance, const py::object& progress,
-                                     steady::LatticeMeshStats& stats) {
-  return run_with_progress(progress, [&](steady::Progress& p) {
-    return steady::lattice_mesh(steady::flatten(lat), {tolerance}, &stats, p);
+// The lattice's mesh, trimmed into `body` (and with a skin down to `inner`) when given; its stats into `stats`.
+steady::TriangleMesh lattice_mesh_of(const Lattice& lat, double tolerance, const py::object& body,
+                                     const py::object& inner, const py::object& progress, py::dict& stats) {
+  if (body.is_none()) {
+    if (!inner.is_none()) value_error("inner", "a skin's inner surface needs the body too");
+    steady::LatticeMeshStats s;
+    steady::TriangleMesh mesh = run_with_progress(progress, [&](steady::Progress& p) {
+      return steady::lattice_mesh(steady::flatten(lat), {tolerance}, &s, p);
+    });
+    stats = stats_dict(s);
+    return mesh;
+  }
+  const steady::TriangleMesh body_mesh = to_triangle_mesh(body, "body");
+  steady::TriangleMesh inner_mesh;
+  steady::TrimmedMeshRequest request;
+  request.body = &body_mesh;
+  if (!inner.is_none()) {
+    inner_mesh = to_triangle_mesh(inner, "inner");
+    request.inner = &inner_mesh;
+  }
+  steady::TrimmedMeshStats s;
+  steady::TriangleMesh mesh = run_with_progress(progress, [&](steady::Progress& p) {
+    return steady::trimmed_lattice_mesh(steady::flatten(lat), {tolerance}, request, &s, p);
   });
+  stats = stats_dict(s.mesh);
+  stats["inside_hubs"] = s.inside_hubs;
+  stats["crossing_hubs"] = s.crossing_hubs;
+  stats["outside_hubs"] = s.outside_hubs;
+  stats["band_triangles"] = s.band_triangles;
+  stats["boolean_seconds"] = s.boolean_seconds;
+  return mesh;
 }
+
+// The body and inner arguments, for the docstrings (a literal, so that it joins theirs).
+#define STEADY_BODY_DOC \
+    " body: None, or (vertices, triangles) of a closed, outward mesh of the body the lattice is trimmed into: " \
+    "hubs inside it are placed whole, outside ones dropped, and only the band of crossing hubs goes through a " \
+    "Boolean (CGAL's corefinement). inner: with a body, None or the mesh of the body's inner offset: the skin " \
+    "between the two is united with the lattice, which is trimmed to the inner surface."
 
 }  // namespace
 
@@ -87,50 +121,67 @@ void bind_mesh(py::module_& m) {
   auto lattice = py::reinterpret_borrow<py::class_<Lattice>>(m.attr("Lattice"));
   lattice.def(
       "to_mesh",
-      [](const Lattice& lat, double tolerance, const py::object& progress, const py::object& stats) {
-        steady::LatticeMeshStats s;
-        const steady::TriangleMesh mesh = lattice_mesh_of(lat, tolerance, progress, s);
-        fill(stats, stats_dict(s));
+      [](const Lattice& lat, double tolerance, const py::object& body, const py::object& inner,
+         const py::object& progress, const py::object& stats) {
+        py::dict s;
+        const steady::TriangleMesh mesh = lattice_mesh_of(lat, tolerance, body, inner, progress, s);
+        fill(stats, s);
         return mesh_arrays(mesh);
       },
-      py::arg("tolerance"), py::arg("progress") = py::none(), py::arg("stats") = py::none(),
+      py::arg("tolerance"), py::arg("body") = py::none(), py::arg("inner") = py::none(),
+      py::arg("progress") = py::none(), py::arg("stats") = py::none(),
       "The lattice as one closed, outward-oriented triangle mesh with no self-intersection, straight from its "
       "definition (no B-rep, no Boolean): (vertices float64 N x 3, triangles uint32 M x 3). tolerance: the largest "
       "distance, in model units, from a triangle to the exact ball or cone it approximates (every vertex lies on the "
       "exact surface); it must be > 0 and below a quarter of the smallest ball radius. Each distinct hub shape is "
       "tessellated once per scale level and placed as similar copies. progress: as for brep(). stats: None or a "
       "dict, filled with hubs, crowded_hubs, beams, distinct_hubs, templates, vertices, triangles, "
-      "template_seconds, placing_seconds.");
+      "template_seconds, placing_seconds (and with a body inside_hubs, crossing_hubs, outside_hubs, "
+      "band_triangles, boolean_seconds)." STEADY_BODY_DOC);
   lattice.def(
       "write_stl",
       [](const Lattice& lat, const std::string& path, double tolerance, const std::string& name,
-         const py::object& progress, const py::object& stats) {
+         const py::object& body, const py::object& inner, const py::object& progress, const py::object& stats) {
+        if (!body.is_none()) {
+          py::dict s;
+          const steady::TriangleMesh mesh = lattice_mesh_of(lat, tolerance, body, inner, progress, s);
+          {
+            py::gil_scoped_release release;
+            steady::write_stl(mesh, path, name);
+          }
+          fill(stats, s);
+          return;
+        }
         const steady::LatticeMeshStats s = run_with_progress(progress, [&](steady::Progress& p) {
           return steady::write_lattice_stl(steady::flatten(lat), {tolerance}, path, name, p);
         });
         fill(stats, stats_dict(s));
       },
-      py::arg("path"), py::arg("tolerance"), py::arg("name") = "lattice", py::arg("progress") = py::none(),
-      py::arg("stats") = py::none(),
+      py::arg("path"), py::arg("tolerance"), py::arg("name") = "lattice", py::arg("body") = py::none(),
+      py::arg("inner") = py::none(), py::arg("progress") = py::none(), py::arg("stats") = py::none(),
       "Writes the lattice's mesh (see to_mesh) as binary STL, streamed chunk by chunk: the whole mesh is never "
       "held, so lattices too large for an indexed mesh still reach the printer. Written beside the path and renamed "
-      "when complete: a failure or a cancel leaves no partial file.");
+      "when complete: a failure or a cancel leaves no partial file. With a body (see to_mesh) the trimmed mesh is "
+      "made whole first.");
   lattice.def(
       "write_obj",
       [](const Lattice& lat, const std::string& path, double tolerance, const std::string& name,
-         const py::object& progress) {
-        steady::LatticeMeshStats s;
-        const steady::TriangleMesh mesh = lattice_mesh_of(lat, tolerance, progress, s);
+         const py::object& body, const py::object& inner, const py::object& progress) {
+        py::dict s;
+        const steady::TriangleMesh mesh = lattice_mesh_of(lat, tolerance, body, inner, progress, s);
         py::gil_scoped_release release;
         steady::write_obj(mesh, path, name);
       },
-      py::arg("path"), py::arg("tolerance"), py::arg("name") = "lattice", py::arg("progress") = py::none(),
-      "Writes the lattice's mesh (see to_mesh) as Wavefront OBJ.");
+      py::arg("path"), py::arg("tolerance"), py::arg("name") = "lattice", py::arg("body") = py::none(),
+      py::arg("inner") = py::none(), py::arg("progress") = py::none(),
+      "Writes the lattice's mesh (see to_mesh, body and inner too) as Wavefront OBJ.");
   lattice.def(
       "write_3mf",
       [](const Lattice& lat, const std::string& path, const py::object& tolerance, bool beam_lattice,
-         const std::string& name, const std::string& unit, const py::object& clipping, const py::object& progress,
-         const py::object& stats) {
+         const std::string& name, const std::string& unit, const py::object& clipping, const py::object& body,
+         const py::object& inner, const py::object& progress, const py::object& stats) {
+        if (beam_lattice && !body.is_none())
+          value_error("body", "a beam lattice is not trimmed: give the body's mesh as clipping=");
         steady::BeamLatticeOptions options;
         steady::TriangleMesh clipping_mesh;
         if (!clipping.is_none()) {
@@ -140,11 +191,10 @@ void bind_mesh(py::module_& m) {
         }
         options.name = name;
         options.unit = unit;
-        steady::LatticeMeshStats s;
+        py::dict d;
         steady::TriangleMesh mesh;
-        if (!tolerance.is_none()) mesh = lattice_mesh_of(lat, to_double(tolerance, "tolerance"), progress, s);
+        if (!tolerance.is_none()) mesh = lattice_mesh_of(lat, to_double(tolerance, "tolerance"), body, inner, progress, d);
         else if (!beam_lattice) value_error("tolerance", "a mesh 3MF needs a tolerance (a beam lattice does not)");
-        py::dict d = stats_dict(s);
         if (beam_lattice) {
           if (!tolerance.is_none()) options.representation = &mesh;
           const steady::BeamLatticeStats b = run_with_progress(progress, [&](steady::Progress& p) {
@@ -162,13 +212,15 @@ void bind_mesh(py::module_& m) {
       },
       py::arg("path"), py::arg("tolerance") = py::none(), py::arg("beam_lattice") = false,
       py::arg("name") = "lattice", py::arg("unit") = "millimeter", py::arg("clipping") = py::none(),
-      py::arg("progress") = py::none(), py::arg("stats") = py::none(),
+      py::arg("body") = py::none(), py::arg("inner") = py::none(), py::arg("progress") = py::none(),
+      py::arg("stats") = py::none(),
       "Writes a 3MF. beam_lattice=False: the lattice's mesh (see to_mesh; tolerance required) as a core 3MF mesh "
       "object through lib3mf. beam_lattice=True: the 3MF Beam Lattice extension v1.2, a beam per beam with its two "
       "radii and a ball per ball (megabytes for a million beams); with a tolerance, the mesh rides along as the "
       "representation mesh that viewers without beam-lattice support show; clipping: None or (vertices, triangles) of "
       "a closed mesh of the body, written as the lattice's clipping mesh (clippingmode inside: the printer keeps "
-      "what lies inside it). unit: micron, millimeter, centimeter, inch, foot or meter.");
+      "what lies inside it). body, inner: for a mesh 3MF, the lattice trimmed (and skinned), see to_mesh. unit: "
+      "micron, millimeter, centimeter, inch, foot or meter.");
   m.def(
       "read_3mf",
       [](const std::string& path) {

@@ -1,6 +1,7 @@
-"""Printer files of the workbench's lattices, straight from the kernel's lattice meshes (no B-rep, no Boolean):
-binary STL (streamed), OBJ, and 3MF as a beam lattice with its mesh riding along for viewers. A LatticePart goes
-to 3MF as a beam lattice clipped by its body's mesh (the printer clips); its trimmed mesh is not made yet."""
+"""Printer files of the workbench's lattices, straight from the kernel's lattice meshes (no B-rep): binary STL
+(streamed), OBJ, and 3MF as a beam lattice with its mesh riding along for viewers. A LatticePart goes to STL and
+OBJ as the lattice trimmed into its body's mesh (with its skin: the body's inner offset, made by OpenCASCADE), and
+to 3MF as a beam lattice clipped by its body's mesh (the printer clips)."""
 from latticewb.kernel import lattice_part, steady_lattice
 from latticewb.utils import types
 
@@ -17,12 +18,33 @@ def default_tolerance(lattice):
 
 def body_mesh(obj, tolerance):
     """(vertices, triangles) of a LatticePart's body tessellated by FreeCAD, in document coordinates."""
-    import numpy as np
     if obj.Body is None:
-        raise ValueError("Body: a LatticePart needs a body to clip its beam lattice")
+        raise ValueError("Body: a LatticePart needs a body for a mesh or a clipped beam lattice")
     shape = obj.Body.Shape
     if shape.isNull() or not shape.Solids:
         raise ValueError("Body: %s holds no solid" % obj.Body.Label)
+    return _tessellated(shape, tolerance)
+
+
+def part_meshes(obj, tolerance):
+    """(placed lattice, body mesh, inner mesh or None) of a LatticePart: the body tessellated by FreeCAD within
+    `tolerance`, and with a skin its inner offset too."""
+    lattice, body, policy, skin, _ = lattice_part.kernel_request(obj)
+    if body is None:
+        raise ValueError("Body: a LatticePart without a body has no trimmed mesh; export its SteadyLattice")
+    if policy != "clip":
+        raise ValueError("Policy: a trimmed mesh clips the lattice at the body (policy 'clip'); got %r" % policy)
+    inner = None
+    if skin > 0.0:
+        offset = obj.Body.Shape.makeOffsetShape(-skin, 1e-6 * max(1.0, obj.Body.Shape.BoundBox.DiagonalLength))
+        if offset.isNull() or not offset.Solids:
+            raise ValueError("Skin: the body has no inner offset %g mm thick" % skin)
+        inner = _tessellated(offset, tolerance)
+    return lattice, body_mesh(obj, tolerance), inner
+
+
+def _tessellated(shape, tolerance):
+    import numpy as np
     points, facets = shape.tessellate(tolerance)
     return (np.array([(p.x, p.y, p.z) for p in points], dtype=float), np.array(facets, dtype=np.int64))
 
@@ -32,10 +54,16 @@ def write_mesh_file(obj, path, extension, tolerance=None, report=None):
     mesh in document units (None: default_tolerance). report(fraction) -> False cancels (steadylattice.Cancelled,
     no file written). Returns the kernel's stats."""
     stats = {}
+    if types.is_part(obj) and extension in (".stl", ".obj"):
+        lattice = lattice_part.kernel_request(obj)[0]
+        tolerance = tolerance or default_tolerance(lattice)
+        lattice, body, inner = part_meshes(obj, tolerance)
+        if extension == ".stl":
+            lattice.write_stl(path, tolerance, name=obj.Label, body=body, inner=inner, progress=report, stats=stats)
+        else:
+            lattice.write_obj(path, tolerance, name=obj.Label, body=body, inner=inner, progress=report)
+        return stats
     if types.is_part(obj):
-        if extension != ".3mf":
-            raise ValueError("%s: the trimmed mesh of a LatticePart is not made yet; export it as STEP, or as .3mf "
-                             "(a beam lattice the printer clips by the body)" % obj.Label)
         lattice, body, _, skin, _ = lattice_part.kernel_request(obj)
         if skin > 0.0:
             raise ValueError("%s: a skin is not part of a 3MF beam lattice yet; export it as STEP" % obj.Label)
