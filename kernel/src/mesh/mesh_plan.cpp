@@ -1,0 +1,265 @@
+#include "mesh/mesh_plan.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include "lattice/circle_frames.hpp"
+#include "lattice/hub_catalog.hpp"
+#include "lattice/hub_collars.hpp"
+#include "mesh/hub_tessellation.hpp"
+#include "steady/core/errors.hpp"
+#include "steady/core/memory_budget.hpp"
+#include "steady/lattice/beam_frustum.hpp"
+#include "steady/query/clean_check.hpp"
+
+namespace steady {
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+std::string g(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+void check_tolerance(const FlatLattice& f, double tolerance) {
+  if (!std::isfinite(tolerance) || tolerance <= 0.0)
+    fail_input("tolerance", "must be a finite length > 0 (got " + g(tolerance) + ")");
+  for (std::int64_t i = 0; i < f.ball_count(); ++i)
+    if (tolerance >= 0.25 * f.balls[i].radius)
+      fail_input("tolerance", g(tolerance) + " is a quarter of ball " + std::to_string(i) + "'s radius " +
+                                  g(f.balls[i].radius) + " or more: use a tolerance below " +
+                                  g(0.25 * f.balls[i].radius));
+}
+
+void check_clean_for_mesh(const FlatLattice& f) {
+  CleanCheckOptions options;
+  options.skip_circle_overlaps = true;  // crowded hubs are built as unions
+  const CleanReport report = check_clean(f, options);
+  if (report.clean()) return;
+  std::ostringstream os;
+  os << "is not clean (" << report.issue_count << " issue" << (report.issue_count == 1 ? "" : "s") << "): ";
+  for (std::size_t i = 0; i < std::min<std::size_t>(3, report.issues.size()); ++i)
+    os << (i ? "; " : "") << report.issues[i].describe();
+  if (report.issue_count > 3) os << "; ...";
+  fail_input("lattice", os.str());
+}
+
+}  // namespace
+
+// The strip between loop a (counterclockwise about the beam's axis) and loop b (given counterclockwise about the
+// opposite direction, as hub b sees its stump): the two polygons merged by angle about the axis, so every
+// triangle spans at most one segment of each circle.
+void strip_triangles(const std::vector<Vec3>& va, const std::vector<std::uint32_t>& ia, const std::vector<Vec3>& vb,
+                     std::vector<std::uint32_t> ib, const Vec3& axis, const Vec3& center, Triangle* out) {
+  std::reverse(ib.begin(), ib.end());
+  std::vector<Vec3> pb(vb.rbegin(), vb.rend());
+  const Vec3 u = any_perpendicular(axis), v = glm::cross(axis, u);
+  auto angle = [&](const Vec3& p) { return std::atan2(glm::dot(p - center, v), glm::dot(p - center, u)); };
+  auto above = [](double t, double base) {  // t unwrapped into [base, base + 2 pi)
+    double r = std::fmod(t - base, 2.0 * M_PI);
+    return base + (r < 0.0 ? r + 2.0 * M_PI : r);
+  };
+  const int na = static_cast<int>(ia.size()), nb = static_cast<int>(ib.size());
+  const double a0 = angle(va[0]);
+  int j0 = 0;
+  double best = 1e300;
+  for (int j = 0; j < nb; ++j) {
+    const double d = std::abs(above(angle(pb[j]), a0 - M_PI) - a0);
+    if (d < best) best = d, j0 = j;
+  }
+  const double b0 = above(angle(pb[j0]), a0 - M_PI);
+  std::vector<double> ta(na + 1), tb(nb + 1);
+  for (int i = 0; i < na; ++i) ta[i] = i == 0 ? a0 : above(angle(va[i]), a0);
+  ta[na] = a0 + 2.0 * M_PI;
+  for (int j = 0; j < nb; ++j) tb[j] = j == 0 ? b0 : above(angle(pb[(j0 + j) % nb]), b0);
+  tb[nb] = b0 + 2.0 * M_PI;
+  int i = 0, j = 0, n = 0;
+  auto A = [&](int k) { return ia[k % na]; };
+  auto B = [&](int k) { return ib[(j0 + k) % nb]; };
+  while (i < na || j < nb) {
+    if (j == nb || (i < na && ta[i + 1] <= tb[j + 1])) {
+      out[n++] = {A(i), A(i + 1), B(j)};
+      ++i;
+    } else {
+      out[n++] = {A(i), B(j + 1), B(j)};
+      ++j;
+    }
+  }
+}
+
+MeshPlan plan_lattice_mesh(const FlatLattice& f, const MeshOptions& options, Progress& progress) {
+  MeshPlan plan;
+  plan.lattice = &f;
+  LatticeMeshStats& stats = plan.stats;
+  check_tolerance(f, options.tolerance);
+  progress.set_total(100);
+  check_clean_for_mesh(f);
+  progress.advance(5);
+  plan.frustums = beam_frustums(f);
+  const std::vector<BeamFrustum>& frustums = plan.frustums;
+  const std::vector<char> absorbed = absorbed_balls(f, frustums);
+
+  // Hubs and their distinct shapes.
+  std::vector<HubGeometry> geometry;
+  plan.ends.assign(2 * f.beam_count(), MeshBeamEnd{});
+  for (std::int64_t i = 0; i < f.ball_count(); ++i) {
+    if (absorbed[i]) continue;
+    MeshHub h;
+    h.ball = i;
+    geometry.push_back(hub_geometry(
+        f, frustums, i, [&](std::int64_t e) { return frustums[e].exists; }, h.stumps));
+    for (std::size_t s = 0; s < h.stumps.size(); ++s)
+      plan.ends[2 * h.stumps[s].first + h.stumps[s].second] = {static_cast<std::int64_t>(plan.hubs.size()),
+                                                               static_cast<int>(s)};
+    plan.hubs.push_back(std::move(h));
+  }
+  plan.catalog = catalog_hubs(geometry);
+  const HubCatalog& catalog = plan.catalog;
+
+  // One template per (shape, tolerance level).
+  std::map<std::pair<int, int>, int> template_of;
+  std::vector<std::pair<int, int>> keys;
+  for (std::size_t h = 0; h < plan.hubs.size(); ++h) {
+    const int level = tolerance_level(options.tolerance / f.balls[plan.hubs[h].ball].radius);
+    const auto key = std::make_pair(catalog.placements[h].shape, level);
+    const auto [it, fresh] = template_of.emplace(key, static_cast<int>(keys.size()));
+    if (fresh) keys.push_back(key);
+    plan.hubs[h].templ = it->second;
+    stats.crowded_hubs += geometry[h].kind != 0;
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  plan.templates.resize(keys.size());
+  {
+    Progress part(progress, 90, static_cast<std::int64_t>(keys.size()));
+    tbb::parallel_for(std::size_t(0), keys.size(), [&](std::size_t t) {
+      part.check();
+      const auto [shape, level] = keys[t];
+      const std::vector<SphereCap>& caps = catalog.shapes[shape];
+      const HubGeometry& rep = geometry[catalog.representatives[shape]];
+      if (rep.kind == 0) {
+        plan.templates[t] = tessellate_clean_hub(caps, level_tolerance(level));
+      } else {
+        const std::vector<CoreStump> stumps = core_stumps(caps, rep.extras);
+        const CoreKind kind = core_kind(rep.kind);
+        plan.templates[t] = tessellate_crowded_hub(stumps, place_collars(stumps, kind, kMaxCollarPosition),
+                                                   level_tolerance(level));
+      }
+      part.advance();
+    });
+  }
+  stats.template_seconds = seconds_since(t0);
+
+  // Sizes and offsets; every beam fits between its hubs' loops.
+  for (MeshHub& h : plan.hubs) {
+    h.first_vertex = plan.vertex_count;
+    h.first_triangle = plan.triangle_count;
+    plan.vertex_count += plan.templates[h.templ].vertices.size();
+    plan.triangle_count += plan.templates[h.templ].triangles.size();
+  }
+  plan.beam_first_triangle.assign(f.beam_count() + 1, plan.triangle_count);
+  for (std::int64_t e = 0; e < f.beam_count(); ++e) {
+    std::uint64_t n = 0;
+    if (frustums[e].exists) {
+      const MeshBeamEnd& a = plan.ends[2 * e];
+      const MeshBeamEnd& b = plan.ends[2 * e + 1];
+      if (a.hub < 0 || b.hub < 0) throw std::runtime_error("mesh: beam " + std::to_string(e) + " lost a hub");
+      auto position = [&](const MeshBeamEnd& end) {
+        return plan.templates[plan.hubs[end.hub].templ].loop_position[end.slot] *
+               f.balls[plan.hubs[end.hub].ball].radius;
+      };
+      const double at_a = position(a), at_b = position(b), length = frustums[e].cone.length;
+      if (!(at_a + at_b < length * (1.0 - 1e-9)))
+        fail_input("hub", "beam " + std::to_string(e) + " (balls " + std::to_string(f.beams[e].a) + " and " +
+                              std::to_string(f.beams[e].b) + ") is too short for the collars of its crowded hubs (" +
+                              g(at_a) + " + " + g(at_b) + " of its length " + g(length) +
+                              "): thinner beams or smaller balls there");
+      n = strip_size(plan, e);
+      ++stats.beams;
+    }
+    plan.beam_first_triangle[e + 1] = plan.beam_first_triangle[e] + n;
+  }
+  plan.triangle_count = plan.beam_first_triangle[f.beam_count()];
+  stats.hubs = static_cast<std::int64_t>(plan.hubs.size());
+  stats.distinct_hubs = static_cast<std::int64_t>(catalog.shapes.size());
+  stats.templates = static_cast<std::int64_t>(plan.templates.size());
+  stats.triangles = static_cast<std::int64_t>(plan.triangle_count);
+  stats.vertices = static_cast<std::int64_t>(plan.vertex_count);
+  progress.finish();
+  return plan;
+}
+
+Vec3 placed_vertex(const MeshPlan& plan, std::size_t h, std::uint32_t v) {
+  const Ball& ball = plan.lattice->balls[plan.hubs[h].ball];
+  return ball.center + (ball.radius * plan.catalog.placements[h].rotation) * plan.templates[plan.hubs[h].templ].vertices[v];
+}
+
+void place_hub(const MeshPlan& plan, std::size_t h, Vec3* vertices, Triangle* triangles) {
+  const HubTemplate& t = plan.templates[plan.hubs[h].templ];
+  for (std::size_t v = 0; v < t.vertices.size(); ++v) vertices[v] = placed_vertex(plan, h, static_cast<std::uint32_t>(v));
+  const auto base = static_cast<std::uint32_t>(plan.hubs[h].first_vertex);
+  for (const Triangle& tri : t.triangles) *triangles++ = {base + tri[0], base + tri[1], base + tri[2]};
+}
+
+std::size_t strip_size(const MeshPlan& plan, std::int64_t e) {
+  std::size_t n = 0;
+  for (int end = 0; end < 2; ++end) {
+    const MeshBeamEnd& be = plan.ends[2 * e + end];
+    n += plan.templates[plan.hubs[be.hub].templ].loops[be.slot].size();
+  }
+  return n;
+}
+
+namespace {
+
+// A beam's loops in place, with their vertices' indices into the whole mesh.
+void strip_loops(const MeshPlan& plan, std::int64_t e, std::vector<Vec3> (&points)[2],
+                 std::vector<std::uint32_t> (&index)[2]) {
+  for (int end = 0; end < 2; ++end) {
+    const MeshBeamEnd& be = plan.ends[2 * e + end];
+    const MeshHub& h = plan.hubs[be.hub];
+    for (std::uint32_t v : plan.templates[h.templ].loops[be.slot]) {
+      index[end].push_back(static_cast<std::uint32_t>(h.first_vertex + v));
+      points[end].push_back(placed_vertex(plan, be.hub, v));
+    }
+  }
+}
+
+}  // namespace
+
+void place_strip(const MeshPlan& plan, std::int64_t e, Triangle* triangles) {
+  std::vector<Vec3> points[2];
+  std::vector<std::uint32_t> index[2];
+  strip_loops(plan, e, points, index);
+  const BeamCone& cone = plan.frustums[e].cone;
+  strip_triangles(points[0], index[0], points[1], index[1], cone.axis, cone.a, triangles);
+}
+
+void place_strip_corners(const MeshPlan& plan, std::int64_t e, std::array<Vec3, 3>* corners) {
+  std::vector<Vec3> points[2];
+  std::vector<std::uint32_t> index[2];
+  strip_loops(plan, e, points, index);
+  // Local indices: loop a first, then loop b.
+  const auto na = static_cast<std::uint32_t>(index[0].size());
+  for (std::uint32_t i = 0; i < index[0].size(); ++i) index[0][i] = i;
+  for (std::uint32_t i = 0; i < index[1].size(); ++i) index[1][i] = na + i;
+  std::vector<Triangle> local(index[0].size() + index[1].size());
+  const BeamCone& cone = plan.frustums[e].cone;
+  strip_triangles(points[0], index[0], points[1], index[1], cone.axis, cone.a, local.data());
+  for (const Triangle& t : local) {
+    for (int k = 0; k < 3; ++k) (*corners)[k] = t[k] < na ? points[0][t[k]] : points[1][t[k] - na];
+    ++corners;
+  }
+}
+
+}  // namespace steady
