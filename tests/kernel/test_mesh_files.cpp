@@ -16,6 +16,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <tbb/global_control.h>
+
 #include "steady/core/errors.hpp"
 #include "steady/lattice/flat_lattice.hpp"
 #include "steady/lattice/presets.hpp"
@@ -81,6 +83,27 @@ TEST(MeshFiles, StreamedStlIsTheSameFileAsTheWholeMesh) {
   EXPECT_EQ(fs::file_size(streamed), 84 + 50 * static_cast<std::uint64_t>(stats.triangles));
   std::remove(whole.c_str());
   std::remove(streamed.c_str());
+}
+
+TEST(MeshFiles, FilesAreTheSameWhateverTheNumberOfThreads) {
+  // Templates, placements and files do not depend on how the work was split: one thread or all of them write the
+  // same bytes (STL streamed, beam lattice, a slice).
+  const FlatLattice f = flatten(preset_lattice("octet", {2, 2, 2}, 2.0, 0.3, 0.24));  // crowded hubs too
+  auto files = [&](const std::string& tag) {
+    const std::string stl = temp_path("threads_" + tag + ".stl"), beams = temp_path("threads_" + tag + ".3mf");
+    write_lattice_stl(f, {0.01}, stl);
+    write_3mf_beam_lattice(f, beams);
+    std::string out = slurp(stl) + slurp(beams);
+    std::remove(stl.c_str());
+    std::remove(beams.c_str());
+    return out;
+  };
+  std::string one;
+  {
+    tbb::global_control single(tbb::global_control::max_allowed_parallelism, 1);
+    one = files("one");
+  }
+  EXPECT_EQ(one, files("all"));
 }
 
 TEST(MeshFiles, ObjReadByCgal) {

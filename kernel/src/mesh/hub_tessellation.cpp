@@ -53,6 +53,38 @@ std::vector<Vec3> circle_points(const Vec3& direction, double position, double r
   return points;
 }
 
+// Four or more points of a sphere in one plane (symmetric hubs have them) can be triangulated in several ways,
+// and the hull picks one depending on how it was run (one thread or many gave different meshes). Flips every
+// diagonal between two coplanar triangles to the one holding the quadrilateral's smallest index, until none
+// changes: a choice that depends on the points alone.
+constexpr int kFlipRounds = 64;
+void canonical_diagonals(std::vector<Triangle>& triangles, const std::vector<Point>& points) {
+  for (int round = 0; round < kFlipRounds; ++round) {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::pair<std::size_t, int>> edge_of;  // directed edge
+    for (std::size_t f = 0; f < triangles.size(); ++f)
+      for (int k = 0; k < 3; ++k) edge_of[{triangles[f][k], triangles[f][(k + 1) % 3]}] = {f, k};
+    std::vector<char> touched(triangles.size(), 0);
+    bool flipped = false;
+    for (std::size_t f = 0; f < triangles.size(); ++f) {
+      for (int k = 0; k < 3 && !touched[f]; ++k) {
+        const std::uint32_t a = triangles[f][k], b = triangles[f][(k + 1) % 3], c = triangles[f][(k + 2) % 3];
+        const auto twin = edge_of.find({b, a});
+        if (twin == edge_of.end() || touched[twin->second.first]) continue;
+        const std::size_t g = twin->second.first;
+        const std::uint32_t d = triangles[g][(twin->second.second + 2) % 3];
+        if (std::min(c, d) >= std::min(a, b)) continue;  // the diagonal already holds the smallest index
+        if (CGAL::orientation(points[a], points[b], points[c], points[d]) != CGAL::COPLANAR) continue;
+        // (a, b, c) and (b, a, d) become (c, a, d) and (d, b, c): the same outward orientation.
+        triangles[f] = {c, a, d};
+        triangles[g] = {d, b, c};
+        touched[f] = touched[g] = 1;
+        flipped = true;
+      }
+    }
+    if (!flipped) return;
+  }
+}
+
 // The convex hull of unit vectors, as outward triangles of their indices: the sphere's Delaunay triangulation.
 // Every point of the sphere is a vertex of the hull (points closer than rounding would not be: an error).
 std::vector<Triangle> sphere_triangulation(const std::vector<Vec3>& directions) {
@@ -77,11 +109,12 @@ std::vector<Triangle> sphere_triangulation(const std::vector<Vec3>& directions) 
       const Point& p = hull.point(v);
       t[i++] = index.at(Key{p.x(), p.y(), p.z()});
     }
-    // Each triangle from its smallest index, the list sorted: the same points give the same triangles in the same
-    // order whatever order the hull visited them in (it shuffles its input).
-    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
     triangles.push_back(t);
   }
+  canonical_diagonals(triangles, points);
+  // Each triangle from its smallest index, the list sorted: the same points give the same triangles in the same
+  // order however the hull was built.
+  for (Triangle& t : triangles) std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
   std::sort(triangles.begin(), triangles.end());
   return triangles;
 }
