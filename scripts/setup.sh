@@ -19,6 +19,8 @@ PACKAGES=(
   libglm-dev libtbb-dev lib3mf-dev libzip-dev zlib1g-dev nlohmann-json3-dev
   # tests and benchmarks
   googletest libgtest-dev libgmock-dev libbenchmark-dev
+  # the voxel baseline of the benchmarks (OpenVDB)
+  libopenvdb-dev
   # independent readers in the tests: XML schema validation of 3MF beam lattices
   libxml2-utils
   # a real FreeCAD window without a display; peak-memory measurement
