@@ -1009,17 +1009,7 @@ LatticeBrep build_lattice_brep(const FlatLattice& lattice, SeamPreference seams,
   // shells and classifying them costs more than building them).
   progress.set_total(100);
   // Overlapping exit circles on a ball are the business of hub cores; elements meeting foreign ones are not.
-  CleanCheckOptions options;
-  options.skip_circle_overlaps = true;
-  const CleanReport report = check_clean(lattice, options);
-  if (!report.clean()) {
-    std::ostringstream os;
-    os << "is not clean (" << report.issue_count << " issue" << (report.issue_count == 1 ? "" : "s") << "): ";
-    for (std::size_t i = 0; i < std::min<std::size_t>(3, report.issues.size()); ++i)
-      os << (i ? "; " : "") << report.issues[i].describe();
-    if (report.issue_count > 3) os << "; ...";
-    fail_input("lattice", os.str());
-  }
+  require_clean_for_build(lattice);
   CutEdges cuts;
   BrepSelection selection = BrepSelection::everything(lattice);
   selection.seams = seams;

@@ -53,36 +53,52 @@ std::vector<Vec3> circle_points(const Vec3& direction, double position, double r
   return points;
 }
 
-// Four or more points of a sphere in one plane (symmetric hubs have them) can be triangulated in several ways,
-// and the hull picks one depending on how it was run (one thread or many gave different meshes). Flips every
-// diagonal between two coplanar triangles to the one holding the quadrilateral's smallest index, until none
-// changes: a choice that depends on the points alone.
-constexpr int kFlipRounds = 64;
-void canonical_diagonals(std::vector<Triangle>& triangles, const std::vector<Point>& points) {
-  for (int round = 0; round < kFlipRounds; ++round) {
-    std::map<std::pair<std::uint32_t, std::uint32_t>, std::pair<std::size_t, int>> edge_of;  // directed edge
-    for (std::size_t f = 0; f < triangles.size(); ++f)
-      for (int k = 0; k < 3; ++k) edge_of[{triangles[f][k], triangles[f][(k + 1) % 3]}] = {f, k};
-    std::vector<char> touched(triangles.size(), 0);
-    bool flipped = false;
-    for (std::size_t f = 0; f < triangles.size(); ++f) {
-      for (int k = 0; k < 3 && !touched[f]; ++k) {
-        const std::uint32_t a = triangles[f][k], b = triangles[f][(k + 1) % 3], c = triangles[f][(k + 2) % 3];
-        const auto twin = edge_of.find({b, a});
-        if (twin == edge_of.end() || touched[twin->second.first]) continue;
-        const std::size_t g = twin->second.first;
-        const std::uint32_t d = triangles[g][(twin->second.second + 2) % 3];
-        if (std::min(c, d) >= std::min(a, b)) continue;  // the diagonal already holds the smallest index
-        if (CGAL::orientation(points[a], points[b], points[c], points[d]) != CGAL::COPLANAR) continue;
-        // (a, b, c) and (b, a, d) become (c, a, d) and (d, b, c): the same outward orientation.
-        triangles[f] = {c, a, d};
-        triangles[g] = {d, b, c};
-        touched[f] = touched[g] = 1;
-        flipped = true;
-      }
+// Four or more points of a sphere in one plane (symmetric hubs have them; every ring is one) can be triangulated in
+// several ways, and the hull picks one depending on how it was run (one thread or two gave different meshes). Each
+// such planar facet (adjacent triangles whose corners are coplanar) is triangulated again as the fan from its
+// smallest index: a choice that depends on the points alone.
+void canonical_facets(std::vector<Triangle>& triangles, const std::vector<Point>& points) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> face_of;  // directed edge -> triangle
+  for (std::size_t f = 0; f < triangles.size(); ++f)
+    for (int k = 0; k < 3; ++k) face_of[{triangles[f][k], triangles[f][(k + 1) % 3]}] = f;
+  std::vector<std::size_t> group(triangles.size());
+  for (std::size_t f = 0; f < triangles.size(); ++f) group[f] = f;
+  auto root = [&](std::size_t f) {
+    while (group[f] != f) f = group[f] = group[group[f]];
+    return f;
+  };
+  for (std::size_t f = 0; f < triangles.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = triangles[f][k], b = triangles[f][(k + 1) % 3], c = triangles[f][(k + 2) % 3];
+      const std::size_t g = face_of.at({b, a});
+      std::uint32_t d = 0;
+      for (std::uint32_t v : triangles[g])
+        if (v != a && v != b) d = v;
+      if (CGAL::orientation(points[a], points[b], points[c], points[d]) == CGAL::COPLANAR) group[root(f)] = root(g);
     }
-    if (!flipped) return;
+  std::map<std::size_t, std::vector<std::size_t>> facets;
+  for (std::size_t f = 0; f < triangles.size(); ++f) facets[root(f)].push_back(f);
+  std::vector<Triangle> out;
+  out.reserve(triangles.size());
+  for (const auto& [id, faces] : facets) {
+    if (faces.size() == 1) {
+      out.push_back(triangles[faces[0]]);
+      continue;
+    }
+    // The facet's boundary: its directed edges whose twin lies outside it, chained into the polygon.
+    std::map<std::uint32_t, std::uint32_t> next;
+    for (std::size_t f : faces)
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t a = triangles[f][k], b = triangles[f][(k + 1) % 3];
+        if (root(face_of.at({b, a})) != id) next[a] = b;
+      }
+    std::uint32_t start = next.begin()->first;  // the smallest index on the boundary
+    std::vector<std::uint32_t> polygon{start};
+    for (std::uint32_t v = next.at(start); v != start; v = next.at(v)) polygon.push_back(v);
+    if (polygon.size() != faces.size() + 2) internal_error("a planar facet of a hub's sphere is not a convex polygon");
+    for (std::size_t i = 1; i + 1 < polygon.size(); ++i) out.push_back({polygon[0], polygon[i], polygon[i + 1]});
   }
+  triangles = std::move(out);
 }
 
 // The convex hull of unit vectors, as outward triangles of their indices: the sphere's Delaunay triangulation.
@@ -111,7 +127,7 @@ std::vector<Triangle> sphere_triangulation(const std::vector<Vec3>& directions) 
     }
     triangles.push_back(t);
   }
-  canonical_diagonals(triangles, points);
+  canonical_facets(triangles, points);
   // Each triangle from its smallest index, the list sorted: the same points give the same triangles in the same
   // order however the hull was built.
   for (Triangle& t : triangles) std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());

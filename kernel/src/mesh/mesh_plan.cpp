@@ -42,19 +42,6 @@ void check_tolerance(const FlatLattice& f, double tolerance) {
                                   g(0.25 * f.balls[i].radius));
 }
 
-void check_clean_for_mesh(const FlatLattice& f) {
-  CleanCheckOptions options;
-  options.skip_circle_overlaps = true;  // crowded hubs are built as unions
-  const CleanReport report = check_clean(f, options);
-  if (report.clean()) return;
-  std::ostringstream os;
-  os << "is not clean (" << report.issue_count << " issue" << (report.issue_count == 1 ? "" : "s") << "): ";
-  for (std::size_t i = 0; i < std::min<std::size_t>(3, report.issues.size()); ++i)
-    os << (i ? "; " : "") << report.issues[i].describe();
-  if (report.issue_count > 3) os << "; ...";
-  fail_input("lattice", os.str());
-}
-
 }  // namespace
 
 // The strip between loop a (counterclockwise about the beam's axis) and loop b (given counterclockwise about the
@@ -104,7 +91,7 @@ MeshPlan plan_lattice_mesh(const FlatLattice& f, const MeshOptions& options, Pro
   LatticeMeshStats& stats = plan.stats;
   check_tolerance(f, options.tolerance);
   progress.set_total(100);
-  check_clean_for_mesh(f);
+  require_clean_for_build(f);  // crowded hubs are built; elements meeting foreign ones are not
   progress.advance(5);
   plan.frustums = beam_frustums(f);
   const std::vector<BeamFrustum>& frustums = plan.frustums;

@@ -289,4 +289,17 @@ CleanReport check_clean_brute_force(const FlatLattice& f) {
   return report;
 }
 
+void require_clean_for_build(const FlatLattice& lattice) {
+  CleanCheckOptions options;
+  options.skip_circle_overlaps = true;
+  const CleanReport report = check_clean(lattice, options);
+  if (report.clean()) return;
+  std::ostringstream os;
+  os << "is not clean (" << report.issue_count << " issue" << (report.issue_count == 1 ? "" : "s") << "): ";
+  for (std::size_t i = 0; i < std::min<std::size_t>(3, report.issues.size()); ++i)
+    os << (i ? "; " : "") << report.issues[i].describe();
+  if (report.issue_count > 3) os << "; ...";
+  fail_input("lattice", os.str());
+}
+
 }  // namespace steady

@@ -62,6 +62,10 @@ struct CleanCheckOptions {
 
 CleanReport check_clean(const FlatLattice& lattice, const CleanCheckOptions& options = {});
 
+// What the builders (B-rep, mesh) require: no element meeting a foreign one (overlapping exit circles on one ball
+// are crowded hubs, which they build). Throws InvalidInput ("lattice") naming the first offenders otherwise.
+void require_clean_for_build(const FlatLattice& lattice);
+
 // Per ball: nested in a neighbour through a degenerate beam and carrying only degenerate beams (rule 2 above).
 std::vector<char> absorbed_balls(const FlatLattice& lattice, const std::vector<BeamFrustum>& frustums);
 CleanReport check_clean(const Lattice& lattice, const CleanCheckOptions& options = {});
