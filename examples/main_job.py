@@ -15,18 +15,24 @@ from latticewb import api
 from latticewb.macro import run_macro
 
 
-def main():
-    out_dir = os.environ.get("LATTICE_OUT", os.path.join(os.getcwd(), "out"))
-    os.makedirs(out_dir, exist_ok=True)
-    start = time.time()
-    doc = FreeCAD.newDocument("MainJob")
+def add_part(doc):
+    """The main job's lattice, body and part (not yet recomputed); the benchmarks build the same."""
     # 6 x 6 x 4 octet cells of 8 mm; beams under half their nodes' radius so that every hub is clean
     lattice = api.make_lattice(doc, preset="octet", cells=(6, 6, 4), cell_size=8.0, node_radius=1.3,
                                beam_radius=0.55, twist_w=3.0, taper_w=-1.5)
     body = doc.addObject("Part::Cylinder", "Body")
     body.Radius, body.Height = 20.0, 28.0
     body.Placement.Base = FreeCAD.Vector(24.0, 24.0, 2.0)
-    part = api.make_part(doc, lattice, body, policy="clip", skin=1.2)
+    return api.make_part(doc, lattice, body, policy="clip", skin=1.2)
+
+
+def main():
+    out_dir = os.environ.get("LATTICE_OUT", os.path.join(os.getcwd(), "out"))
+    os.makedirs(out_dir, exist_ok=True)
+    start = time.time()
+    doc = FreeCAD.newDocument("MainJob")
+    part = add_part(doc)
+    lattice, body = part.Lattice, part.Body
     doc.recompute()
     if not part.isValid() or not part.Shape.isValid():
         raise RuntimeError("the part did not build")

@@ -33,14 +33,13 @@ def main():
         part = [o for o in doc.Objects if api.get_type(o) == "LatticePart"][0]
         brep_seconds = None
     else:
-        sys.path.insert(0, os.path.join(source, "examples"))
+        import importlib.util  # loaded under another name: as "main_job" the macro runs itself on import
+        spec = importlib.util.spec_from_file_location("main_job_definition",
+                                                      os.path.join(source, "examples", "main_job.py"))
+        main_job = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(main_job)
         doc = FreeCAD.newDocument("MainJob")
-        lattice = api.make_lattice(doc, preset="octet", cells=(6, 6, 4), cell_size=8.0, node_radius=1.3,
-                                   beam_radius=0.55, twist_w=3.0, taper_w=-1.5)
-        body = doc.addObject("Part::Cylinder", "Body")
-        body.Radius, body.Height = 20.0, 28.0
-        body.Placement.Base = FreeCAD.Vector(24.0, 24.0, 2.0)
-        part = api.make_part(doc, lattice, body, policy="clip", skin=1.2)
+        part = main_job.add_part(doc)
         start = time.time()
         doc.recompute()
         brep_seconds = time.time() - start

@@ -101,25 +101,33 @@ void check_unit(const std::string& unit) {
   fail_input("unit", "'" + unit + "' is not a 3MF unit (micron, millimeter, centimeter, inch, foot, meter)");
 }
 
-void mesh_object(Xml& x, std::uint64_t id, const std::string& name, const TriangleMesh& mesh) {
-  x << "<object";
-  x.attribute("id", id);
-  x << " type=\"model\" name=\"" << escaped(name) << "\"><mesh><vertices>\n";
-  for (const Vec3& v : mesh.vertices) {
-    x << "<vertex";
-    x.attribute("x", static_cast<float>(v.x));
-    x.attribute("y", static_cast<float>(v.y));
-    x.attribute("z", static_cast<float>(v.z));
-    x << "/>\n";
-  }
-  x << "</vertices><triangles>\n";
-  for (const Triangle& t : mesh.triangles) {
+// A <vertex>: the lattice's own at full precision, meshes that ride along as the floats 3MF readers hold.
+template <class Real>
+void vertex(Xml& x, const Vec3& v) {
+  x << "<vertex";
+  x.attribute("x", static_cast<Real>(v.x));
+  x.attribute("y", static_cast<Real>(v.y));
+  x.attribute("z", static_cast<Real>(v.z));
+  x << "/>\n";
+}
+
+void triangles(Xml& x, const std::vector<Triangle>& list) {
+  for (const Triangle& t : list) {
     x << "<triangle";
     x.attribute("v1", std::uint64_t(t[0]));
     x.attribute("v2", std::uint64_t(t[1]));
     x.attribute("v3", std::uint64_t(t[2]));
     x << "/>\n";
   }
+}
+
+void mesh_object(Xml& x, std::uint64_t id, const std::string& name, const TriangleMesh& mesh) {
+  x << "<object";
+  x.attribute("id", id);
+  x << " type=\"model\" name=\"" << escaped(name) << "\"><mesh><vertices>\n";
+  for (const Vec3& v : mesh.vertices) vertex<float>(x, v);
+  x << "</vertices><triangles>\n";
+  triangles(x, mesh.triangles);
   x << "</triangles></mesh></object>\n";
 }
 
@@ -191,13 +199,7 @@ BeamLatticeStats write_3mf_beam_lattice(const FlatLattice& f, const std::string&
   x << "<object";
   x.attribute("id", lattice_id);
   x << " type=\"model\" name=\"" << escaped(options.name) << "\"><mesh><vertices>\n";
-  for (const Ball& b : f.balls) {
-    x << "<vertex";
-    x.attribute("x", b.center.x);
-    x.attribute("y", b.center.y);
-    x.attribute("z", b.center.z);
-    x << "/>\n";
-  }
+  for (const Ball& b : f.balls) vertex<double>(x, b.center);
   // Lone balls as triangles: their sphere's vertices follow the balls'.
   TriangleMesh lone;
   for (std::int64_t i = 0; i < f.ball_count(); ++i) {
@@ -208,21 +210,9 @@ BeamLatticeStats write_3mf_beam_lattice(const FlatLattice& f, const std::string&
     for (const Vec3& p : sphere.vertices) lone.vertices.push_back(f.balls[i].center + f.balls[i].radius * p);
     for (const Triangle& t : sphere.triangles) lone.triangles.push_back({base + t[0], base + t[1], base + t[2]});
   }
-  for (const Vec3& v : lone.vertices) {
-    x << "<vertex";
-    x.attribute("x", v.x);
-    x.attribute("y", v.y);
-    x.attribute("z", v.z);
-    x << "/>\n";
-  }
+  for (const Vec3& v : lone.vertices) vertex<double>(x, v);
   x << "</vertices><triangles>\n";
-  for (const Triangle& t : lone.triangles) {
-    x << "<triangle";
-    x.attribute("v1", std::uint64_t(t[0]));
-    x.attribute("v2", std::uint64_t(t[1]));
-    x.attribute("v3", std::uint64_t(t[2]));
-    x << "/>\n";
-  }
+  triangles(x, lone.triangles);
   x << "</triangles>\n";
   progress.advance(5);
   if (!written.empty()) {
