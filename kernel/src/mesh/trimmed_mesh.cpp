@@ -247,15 +247,8 @@ TriangleMesh trimmed_lattice_mesh(const FlatLattice& f, const MeshOptions& optio
   if (!band.mesh.triangles.empty() || request.inner) {
     ExactMesh band_mesh = to_exact(band.mesh), result;
     if (request.inner) {
-      ExactMesh skin = to_exact(skin_shell(*request.body, *request.inner)), united;
-      if (band.mesh.triangles.empty()) {
-        united = skin;
-      } else if (!PMP::corefine_and_compute_union(band_mesh, skin, united)) {
-        throw std::runtime_error("mesh: CGAL could not unite the lattice's boundary band with the skin");
-      }
-      result = united;
-      // Hubs of the band (crossing, or at a band beam's end) near the body's outer surface stick out of it: cut
-      // the band there too.
+      // Hubs of the band (crossing, or at a band beam's end) near the body's outer surface stick out of it: the
+      // band is cut there first, then united with the skin (so the skin goes through one Boolean, not two).
       const std::vector<Side> outer = classify_hubs(plan, *request.body);
       bool sticks_out = false;
       for (std::size_t h = 0; h < plan.hubs.size(); ++h)
@@ -267,11 +260,17 @@ TriangleMesh trimmed_lattice_mesh(const FlatLattice& f, const MeshOptions& optio
                              !(sides[a] == Side::Outside && sides[b] == Side::Outside);
         sticks_out = in_band && (outer[a] != Side::Inside || outer[b] != Side::Inside);
       }
-      if (sticks_out) {
+      if (sticks_out && !band.mesh.triangles.empty()) {
         ExactMesh body = to_exact(*request.body), clipped;
-        if (!PMP::corefine_and_compute_intersection(united, body, clipped))
-          throw std::runtime_error("mesh: CGAL could not cut the skinned band at the body's surface");
-        result = clipped;
+        if (!PMP::corefine_and_compute_intersection(band_mesh, body, clipped))
+          throw std::runtime_error("mesh: CGAL could not cut the lattice's boundary band at the body's surface");
+        band_mesh = std::move(clipped);
+      }
+      ExactMesh skin = to_exact(skin_shell(*request.body, *request.inner));
+      if (band.mesh.triangles.empty()) {
+        result = std::move(skin);
+      } else if (!PMP::corefine_and_compute_union(band_mesh, skin, result)) {
+        throw std::runtime_error("mesh: CGAL could not unite the lattice's boundary band with the skin");
       }
     } else {
       ExactMesh body = to_exact(*request.body);

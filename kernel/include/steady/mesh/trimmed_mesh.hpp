@@ -5,8 +5,8 @@
 // placed whole, outside hubs dropped, and only the crossing ones go through a Boolean: the band of crossing hubs
 // and the beams that cross (capped where they meet a hub that is not in the band) is intersected with the body by
 // CGAL's corefinement, the caps at inside hubs are removed again, and the band is joined to the inside part along
-// those hubs' own circles. With a skin, the band is first united with the skin (the body minus its inner offset),
-// so that the skin and the lattice are one closed mesh.
+// those hubs' own circles. With a skin, the band (cut at the body where it reaches the body's surface) is then
+// united with the skin (the body minus its inner offset), so that the skin and the lattice are one closed mesh.
 #include <cstdint>
 
 #include "steady/core/progress.hpp"
