@@ -9,6 +9,13 @@ using steady::Vec3;
 
 void value_error(const std::string& name, const std::string& what) { throw py::value_error(name + ": " + what); }
 
+void fill_stats(const py::object& target, const py::dict& values) {
+  if (target.is_none()) return;
+  if (!py::isinstance<py::dict>(target)) value_error("stats", "expected a dict to fill, or None");
+  py::dict d = target.cast<py::dict>();
+  for (auto item : values) d[item.first] = item.second;
+}
+
 double to_double(py::handle value, const std::string& name) {
   if (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value) &&
       !py::hasattr(value, "__float__"))

@@ -32,6 +32,9 @@ std::vector<steady::BeamPattern> to_beams(py::handle value);
 steady::Counts to_counts(py::handle value);
 std::vector<steady::NodeId> to_omitted(py::handle value);
 
+// Copies `values` into the caller's stats dict (a Python argument `stats`: None, or a dict to fill).
+void fill_stats(const py::object& target, const py::dict& values);
+
 // A kernel progress callback from a Python callable `report(fraction)` (None: no reporting). The callable runs
 // with the GIL held, on the calling thread only; returning False cancels (steadylattice.Cancelled is raised).
 // An exception raised by the callable cancels too, and is raised again by rethrow_callback_error().

@@ -34,13 +34,6 @@ py::dict stats_dict(const steady::LatticeMeshStats& s) {
   return d;
 }
 
-void fill(const py::object& target, const py::dict& values) {
-  if (target.is_none()) return;
-  if (!py::isinstance<py::dict>(target)) value_error("stats", "expected a dict to fill, or None");
-  py::dict d = target.cast<py::dict>();
-  for (auto item : values) d[item.first] = item.second;
-}
-
 py::tuple mesh_arrays(const steady::TriangleMesh& mesh) {
   py::array_t<double> vertices({static_cast<py::ssize_t>(mesh.vertices.size()), py::ssize_t(3)});
   py::array_t<std::uint32_t> triangles({static_cast<py::ssize_t>(mesh.triangles.size()), py::ssize_t(3)});
@@ -125,7 +118,7 @@ void bind_mesh(py::module_& m) {
          const py::object& progress, const py::object& stats) {
         py::dict s;
         const steady::TriangleMesh mesh = lattice_mesh_of(lat, tolerance, body, inner, progress, s);
-        fill(stats, s);
+        fill_stats(stats, s);
         return mesh_arrays(mesh);
       },
       py::arg("tolerance"), py::arg("body") = py::none(), py::arg("inner") = py::none(),
@@ -149,13 +142,13 @@ void bind_mesh(py::module_& m) {
             py::gil_scoped_release release;
             steady::write_stl(mesh, path, name);
           }
-          fill(stats, s);
+          fill_stats(stats, s);
           return;
         }
         const steady::LatticeMeshStats s = run_with_progress(progress, [&](steady::Progress& p) {
           return steady::write_lattice_stl(steady::flatten(lat), {tolerance}, path, name, p);
         });
-        fill(stats, stats_dict(s));
+        fill_stats(stats, stats_dict(s));
       },
       py::arg("path"), py::arg("tolerance"), py::arg("name") = "lattice", py::arg("body") = py::none(),
       py::arg("inner") = py::none(), py::arg("progress") = py::none(), py::arg("stats") = py::none(),
@@ -208,7 +201,7 @@ void bind_mesh(py::module_& m) {
           py::gil_scoped_release release;
           steady::write_3mf(mesh, path, options);
         }
-        fill(stats, d);
+        fill_stats(stats, d);
       },
       py::arg("path"), py::arg("tolerance") = py::none(), py::arg("beam_lattice") = false,
       py::arg("name") = "lattice", py::arg("unit") = "millimeter", py::arg("clipping") = py::none(),

@@ -60,11 +60,7 @@ void bind_slices(py::module_& m) {
         d["element_layers"] = s.element_layers;
         d["raster_seconds"] = s.raster_seconds;
         d["write_seconds"] = s.write_seconds;
-        if (!stats.is_none()) {
-          if (!py::isinstance<py::dict>(stats)) value_error("stats", "expected a dict to fill, or None");
-          py::dict target = stats.cast<py::dict>();
-          for (auto item : d) target[item.first] = item.second;
-        }
+        fill_stats(stats, d);
       },
       py::arg("directory"), py::arg("layer_height"), py::arg("pixel_size"), py::arg("svg") = false,
       py::arg("progress") = py::none(), py::arg("stats") = py::none(),

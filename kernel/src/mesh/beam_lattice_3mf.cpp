@@ -55,23 +55,8 @@ class Xml {
     text.append(buffer, r.ptr);
     return *this;
   }
-  Xml& attribute(const char* name, double v) {
-    text += ' ';
-    text += name;
-    text += "=\"";
-    number(v);
-    text += '"';
-    return *this;
-  }
-  Xml& attribute(const char* name, float v) {
-    text += ' ';
-    text += name;
-    text += "=\"";
-    number(v);
-    text += '"';
-    return *this;
-  }
-  Xml& attribute(const char* name, std::uint64_t v) {
+  template <class T>  // double, float (meshes that ride along) or std::uint64_t (indices)
+  Xml& attribute(const char* name, T v) {
     text += ' ';
     text += name;
     text += "=\"";
