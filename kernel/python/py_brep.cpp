@@ -91,6 +91,7 @@ void fill_stats(const steady::TrimStats& s, py::dict& d) {
   d["holed_clusters"] = s.holed_clusters;
   d["core_hubs"] = s.core_hubs;
   d["distinct_cores"] = s.distinct_cores;
+  d["fused_cores"] = s.fused_cores;
   d["relaid_out"] = s.relaid_out;
   d["relaid_reason"] = s.relaid_reason;
   d["union_through_pores"] = s.union_through_pores;
@@ -142,7 +143,8 @@ void bind_brep(py::module_& m) {
           value_error("stats", "expected a dict to fill, or None");
         steady::TrimStats trim;
         std::string text = run_with_progress(progress, [&](steady::Progress& p) {
-          return steady::lattice_part_brep(steady::flatten(lat), request, p, &trim);
+          // The part's volume in the stats takes as long as the build of a crowded lattice: only when asked.
+          return steady::lattice_part_brep(steady::flatten(lat), request, p, stats.is_none() ? nullptr : &trim);
         });
         if (!stats.is_none()) {
           py::dict d = stats.cast<py::dict>();

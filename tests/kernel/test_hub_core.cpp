@@ -147,6 +147,95 @@ TEST(HubCore, TransversalHubs) {
   EXPECT_GE(built, 3);
 }
 
+CoreStump thin_stump(const Vec3& d, double sin_phi, double end_radius) {
+  CoreStump s;
+  s.direction = glm::normalize(d);
+  s.sin_phi = sin_phi;
+  s.end_radius = end_radius;
+  const double c = std::sqrt(1 - sin_phi * sin_phi);
+  s.exit = end_radius * sin_phi + c * std::sqrt(1 - end_radius * end_radius);
+  return s;
+}
+
+double frustum_volume(const CoreStump& s, double x0, double x1) {
+  const double r0 = s.radius_at(x0), r1 = s.radius_at(x1);
+  return M_PI * (x1 - x0) * (r0 * r0 + r0 * r1 + r1 * r1) / 3.0;
+}
+
+// Stumps of one end radius are built without a Boolean (the arrangement with the ball's sphere at exit_v). Twins:
+// with place_collars' collars, the Fuse of the ball and the stumps; with the tighter core_collars, the same core
+// less the frustums between the two collars of each stump (beyond the tight collars no stump meets another, so
+// the difference is exactly those frustums). Volumes agree far tighter than a quadrature could tell. Returns
+// whether the arrangement built it (tangent exit caps go to the Fuse).
+bool expect_equal_radius_core(const std::vector<CoreStump>& stumps, const std::string& what) {
+  const std::vector<double> wide = place_collars(stumps, CoreKind::Transversal, 50.0);
+  const auto core = build_hub_core(stumps, CoreKind::Transversal, wide);
+  const TopoDS_Shape solid = closed_core(*core);
+  EXPECT_TRUE(is_valid(solid)) << what << ":\n" << validity_report(solid);
+  if (core->fused) return false;
+  const double volume = shape_volume(solid);
+  EXPECT_NEAR(volume / shape_volume(closed_core(*build_transversal_core(stumps, wide))), 1.0, 1e-7) << what;
+  EXPECT_NEAR(volume / core_volume_by_quadrature(stumps, wide, 2000), 1.0, 5e-4) << what;
+  const std::vector<double> tight = core_collars(stumps, CoreKind::Transversal, 50.0);
+  const auto tight_core = build_hub_core(stumps, CoreKind::Transversal, tight);
+  const TopoDS_Shape tight_solid = closed_core(*tight_core);
+  EXPECT_TRUE(is_valid(tight_solid)) << what << " (tight collars):\n" << validity_report(tight_solid);
+  EXPECT_FALSE(tight_core->fused) << what;
+  double between = 0.0;
+  for (std::size_t k = 0; k < stumps.size(); ++k) between += frustum_volume(stumps[k], tight[k], wide[k]);
+  EXPECT_NEAR((shape_volume(tight_solid) + between) / volume, 1.0, 1e-7) << what;
+  return true;
+}
+
+std::vector<Vec3> octet_directions() {
+  std::vector<Vec3> out;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int sa = -1; sa <= 1; sa += 2)
+      for (int sb = -1; sb <= 1; sb += 2) {
+        Vec3 d(0.0);
+        d[(axis + 1) % 3] = sa;
+        d[(axis + 2) % 3] = sb;
+        out.push_back(d);
+      }
+  return out;
+}
+
+TEST(HubCore, EqualEndRadiusHubs) {
+  const Vec3 x(1, 0, 0), y(0, 1, 0), z(0, 0, 1);
+  for (double rho : {0.45, 0.6, 0.8, 0.95}) {
+    const std::string r = " rho " + std::to_string(rho);
+    EXPECT_TRUE(expect_equal_radius_core({thin_stump(x, 0, rho), thin_stump(y, 0, rho), thin_stump(z, 0, rho)},
+                                         "corner" + r) || rho > 0.7);
+    expect_equal_radius_core({thin_stump(x, 0, rho), thin_stump(-x, 0, rho), thin_stump(y, 0, rho),
+                              thin_stump(-y, 0, rho), thin_stump(z, 0, rho), thin_stump(-z, 0, rho)},
+                             "cubic" + r);
+    expect_equal_radius_core({thin_stump(x, 0.2, rho), thin_stump(y, -0.15, rho), thin_stump(z, 0.1, rho),
+                              thin_stump(-x - y, 0.05, rho)},
+                             "graded" + r);
+  }
+}
+
+// The dense octet of issue 17: twelve cylinders along the face diagonals, caps overlapping from beam/node 0.5 on;
+// slightly turned copies stand in for the hubs of a screwed lattice, whose near-degenerate meetings broke the Fuse.
+TEST(HubCore, OctetHubsOfEveryRatio) {
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> u01(-1.0, 1.0);
+  for (double rho : {0.45, 0.5, 0.55, 0.6, 0.64, 0.7, 0.8, 0.9}) {
+    for (int jitter = 0; jitter < 2; ++jitter) {
+      std::vector<CoreStump> stumps;
+      for (const Vec3& d : octet_directions()) {
+        const Vec3 turn = jitter ? 0.02 * Vec3(u01(rng), u01(rng), u01(rng)) : Vec3(0.0);
+        stumps.push_back(thin_stump(d + turn, 0, rho));
+      }
+      const std::string what = "octet rho " + std::to_string(rho) + (jitter ? " jittered" : "");
+      const bool arranged = expect_equal_radius_core(stumps, what);
+      // Caps exactly tangent (rho = sin 30 degrees) are the Fuse's, and so are disjoint caps (rho < 0.5) where no
+      // seam fits between them; overlapping caps are the arrangement's.
+      if (rho > 0.5) EXPECT_TRUE(arranged) << what;
+    }
+  }
+}
+
 // A hull-model lattice (no beam radii): every hub is a core; the volume is the cores' quadratures plus the
 // frustums between the collars.
 TEST(HubCore, HullModelLatticeTrimsAndSkins) {

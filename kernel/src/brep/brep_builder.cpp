@@ -550,7 +550,7 @@ void lay_out_shapes(PieceBuild& b) {
     }
     const std::vector<CoreStump> stumps = core_stumps(b.catalog.shapes[s], b.geometry[rep].extras);
     const CoreKind kind = core_kind(b.hubs[rep].kind);
-    w.core = build_hub_core(stumps, kind, place_collars(stumps, kind, kMaxCollarPosition));
+    w.core = build_hub_core(stumps, kind, core_collars(stumps, kind, kMaxCollarPosition));
     b.progress.advance(kShapeUnits);
   });
 }
@@ -573,13 +573,84 @@ void place_core(PieceBuild& b, HubWork& hub, std::size_t h) {
     for (TopExp_Explorer x(collar, TopAbs_VERTEX); x.More(); x.Next()) v = TopoDS::Vertex(x.Current());
     ring_from_edges(ec, curve, {first}, {v}, {collar});
     ec.axial = core.collar_position[s] * ball.radius;
-    const BeamFrustum& fr = b.frustums[hub.stumps[s].first];
+    // A whole beam only needs its two hubs' stumps to fit along it (check_whole_beams_fit); a split one
+    // needs each to end before its cut.
+    const std::int64_t e = hub.stumps[s].first;
+    if (b.beams[e].kind == BeamKind::Whole) continue;
+    const BeamFrustum& fr = b.frustums[e];
     const double to_cut = hub.stumps[s].second == 0 ? fr.cut_position() : fr.cone.length - fr.cut_position();
     if (!(ec.axial < to_cut * (1.0 - 1e-9)))
-      fail_input("hub", "ball " + std::to_string(hub.ball) + ": beam " + std::to_string(hub.stumps[s].first) +
+      fail_input("hub", "ball " + std::to_string(hub.ball) + ": beam " + std::to_string(e) +
                             " is too short for the collar its crowded hub needs (collar at " +
                             std::to_string(ec.axial) + ", cut at " + std::to_string(to_cut) + ")");
   }
+}
+
+// How far along beam e its end `end` reaches into the beam with every beam radius at that hub scaled by k: the
+// collar the hub's core would need (the exit circle of a clean hub, which only shrinks with k), or infinity when
+// no collar fits.
+double start_with_radii_scaled(const PieceBuild& b, std::int64_t e, int end, double k) {
+  const EndCircle& ec = b.beams[e].end[end];
+  const HubWork& hub = b.hubs[ec.hub];
+  if (hub.kind == 0) return ec.axial;
+  const HubGeometry& g = b.geometry[ec.hub];
+  std::vector<CoreStump> stumps = core_stumps(canonical_caps(g, Mat3(1.0)), g.extras);
+  for (CoreStump& st : stumps) {
+    // The beam is the hull of its end balls: sin(phi) = (r_here - r_there) / length scales with the radii.
+    st.end_radius *= k;
+    st.sin_phi *= k;
+    const double c = std::sqrt((1.0 - st.sin_phi) * (1.0 + st.sin_phi));
+    st.exit = st.end_radius * st.sin_phi + c * std::sqrt((1.0 - st.end_radius) * (1.0 + st.end_radius));
+  }
+  try {
+    return core_collars(stumps, CoreKind::Transversal, kMaxCollarPosition)[ec.slot] * g.ball.radius;
+  } catch (const InvalidInput&) {
+    return std::numeric_limits<double>::infinity();
+  }
+}
+
+// The largest factor on the beam radii at both hubs of beam e under which their stumps fit along it (0: none).
+double fitting_radius_factor(const PieceBuild& b, std::int64_t e) {
+  const double length = b.frustums[e].cone.length;
+  auto fits = [&](double k) {
+    return start_with_radii_scaled(b, e, 0, k) + start_with_radii_scaled(b, e, 1, k) < length * (1.0 - 1e-3);
+  };
+  double lo = 0.0, hi = 1.0;
+  for (int it = 0; it < 24; ++it) (fits(0.5 * (lo + hi)) ? lo : hi) = 0.5 * (lo + hi);
+  return lo;
+}
+
+// A whole beam between two hubs must be longer than the stumps its two hubs need: where their neighbours meet
+// it from both sides, no hub-by-hub construction holds (the beams of a triangle meeting near its middle). The
+// error counts such beams, names the first with its balls and reaches, and the factor on the beam radii at
+// their balls under which all of them (up to kReportedShortBeams examined) fit.
+constexpr std::size_t kReportedShortBeams = 64;
+void check_whole_beams_fit(const PieceBuild& b) {
+  std::vector<std::int64_t> short_beams;
+  for (std::int64_t e = 0; e < b.f.beam_count(); ++e) {
+    const BeamWork& w = b.beams[e];
+    if (w.kind == BeamKind::Whole && !(w.end[0].axial + w.end[1].axial < b.frustums[e].cone.length * (1.0 - 1e-9)))
+      short_beams.push_back(e);
+  }
+  if (short_beams.empty()) return;
+  const std::size_t examined = std::min(short_beams.size(), kReportedShortBeams);
+  std::vector<double> factors(examined);
+  tbb::parallel_for(std::size_t(0), examined, [&](std::size_t k) { factors[k] = fitting_radius_factor(b, short_beams[k]); });
+  const double factor = *std::min_element(factors.begin(), factors.end());
+  const std::int64_t e = short_beams[0];
+  const BeamWork& w = b.beams[e];
+  std::ostringstream os;
+  os.precision(4);
+  os << short_beams.size() << " beam" << (short_beams.size() > 1 ? "s are" : " is")
+     << " too short for the collars of their crowded hubs, e.g. beam " << e << " (balls " << b.f.beams[e].a
+     << " and " << b.f.beams[e].b << "): its neighbours at the two balls meet it up to " << w.end[0].axial << " and "
+     << w.end[1].axial << " from their centres, more than its length " << b.frustums[e].cone.length << " together";
+  if (factor > 0.0)
+    os << "; beam radii at most " << factor << " of today's at the balls of " << (examined > 1 ? "these beams" : "this beam")
+       << " (or smaller balls) would fit";
+  else
+    os << "; thinner beams or smaller balls there";
+  fail_input("hub", os.str());
 }
 
 // A beam's plan: its rings from end a to end b and the seam of every segment. A seam must leave both rings of its
@@ -801,6 +872,7 @@ BrepPieces collect_pieces(PieceBuild& b, CutEdges& cut_edges) {
   out.stats.distinct_hubs = static_cast<std::int64_t>(b.shapes.size());
   for (const ShapeWork& w : b.shapes) {
     out.stats.distinct_cores += w.core != nullptr;
+    out.stats.fused_cores += w.core != nullptr && w.core->fused;
     for (const CircleLayout& c : w.layout.circles) out.stats.seam_crossing_circles += c.role != CircleRole::Inner;
   }
   return out;
@@ -823,6 +895,7 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
     progress.check();
     place_core(b, b.hubs[h], h);
   });
+  check_whole_beams_fit(b);
   tbb::parallel_for(std::int64_t(0), f.beam_count(), [&](std::int64_t e) {
     if (b.beams[e].kind == BeamKind::None) return;
     if (e % 64 == 0) progress.check();
@@ -864,10 +937,48 @@ std::vector<double> stump_starts(const FlatLattice& f, const std::vector<BeamFru
   }
   // The collars as the core's build places them (in ball radii), from the caps in the world frame.
   const std::vector<double> collars =
-      place_collars(core_stumps(canonical_caps(g, Mat3(1.0)), g.extras), core_kind(g.kind), kMaxCollarPosition);
+      core_collars(core_stumps(canonical_caps(g, Mat3(1.0)), g.extras), core_kind(g.kind), kMaxCollarPosition);
   for (std::size_t s = 0; s < stumps.size(); ++s)
     starts[f.incident_slot(ball, stumps[s].first)] = collars[s] * g.ball.radius;
   return starts;
+}
+
+void place_cuts_between_collars(const FlatLattice& f, std::vector<BeamFrustum>& frustums) {
+  std::vector<HubGeometry> hubs(f.ball_count());
+  std::vector<std::vector<std::pair<std::int64_t, int>>> stumps(f.ball_count());
+  tbb::parallel_for(std::int64_t(0), f.ball_count(), [&](std::int64_t i) {
+    hubs[i] = hub_geometry(f, frustums, i, [&](std::int64_t e) { return frustums[e].exists; }, stumps[i]);
+  });
+  bool crowded = false;
+  for (const HubGeometry& g : hubs) crowded = crowded || g.kind != 0;
+  if (!crowded) return;
+  const HubCatalog catalog = catalog_hubs(hubs);
+  std::vector<std::vector<double>> collars(catalog.shapes.size());
+  tbb::parallel_for(std::size_t(0), catalog.shapes.size(), [&](std::size_t s) {
+    const HubGeometry& rep = hubs[catalog.representatives[s]];
+    if (rep.kind == 0) return;
+    try {
+      collars[s] = core_collars(core_stumps(catalog.shapes[s], rep.extras), core_kind(rep.kind), kMaxCollarPosition);
+    } catch (const InvalidInput&) {  // no collar fits: the build says so
+    }
+  });
+  // Per beam end: where its stump starts (NaN: the exit circle of a clean hub).
+  std::vector<double> start(2 * f.beam_count(), std::nan(""));
+  for (std::int64_t i = 0; i < f.ball_count(); ++i) {
+    const std::vector<double>& c = collars[catalog.placements[i].shape];
+    if (c.empty()) continue;
+    for (std::size_t s = 0; s < stumps[i].size(); ++s)
+      start[2 * stumps[i][s].first + stumps[i][s].second] = c[s] * hubs[i].ball.radius;
+  }
+  for (std::int64_t e = 0; e < f.beam_count(); ++e) {
+    BeamFrustum& fr = frustums[e];
+    if (!fr.exists || (std::isnan(start[2 * e]) && std::isnan(start[2 * e + 1]))) continue;
+    const double from = std::isnan(start[2 * e]) ? fr.exit_a : start[2 * e];
+    const double to = fr.cone.length - (std::isnan(start[2 * e + 1]) ? fr.exit_b : start[2 * e + 1]);
+    const double margin = 0.1 * (to - from), x = fr.cut_position();
+    if (!(from < to) || (x > from + margin && x < to - margin)) continue;
+    fr.cut_fraction = (0.5 * (from + to) - fr.exit_a) / fr.length();
+  }
 }
 
 TopoDS_Shape solids_from_faces(const std::vector<TopoDS_Face>& faces, Progress& progress) {

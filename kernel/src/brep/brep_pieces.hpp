@@ -65,4 +65,9 @@ BrepPieces build_brep_pieces(const FlatLattice& lattice, const BrepSelection& se
 std::vector<double> stump_starts(const FlatLattice& lattice, const std::vector<BeamFrustum>& frustums,
                                  const std::vector<char>& beams, std::int64_t ball);
 
+// Moves the cut of every beam whose halfway cut lies within a crowded hub's collar (thick beams between crowded
+// hubs) to halfway between its two hubs' stump starts, with the whole lattice's hubs (each distinct shape's
+// collars computed once). Beams too short for both collars keep their cut; the build names them.
+void place_cuts_between_collars(const FlatLattice& lattice, std::vector<BeamFrustum>& frustums);
+
 }  // namespace steady

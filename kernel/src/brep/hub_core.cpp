@@ -3,6 +3,9 @@
 #include <AdvApprox_ApproxAFunction.hxx>
 #include <AdvApprox_EvaluatorFunction.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
+#include <BRepCheck_Analyzer.hxx>
+#include <BRepBuilderAPI_Transform.hxx>
+#include <BRepLib_MakeFace.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
@@ -68,6 +71,9 @@ constexpr double kCorePcurveTolerance = 1e-9;
 // at half this step, so by the Lipschitz bound of the margin function it never meets the sphere face.
 constexpr double kSeamMargin = 0.01;
 constexpr int kSeamSamples = 360;
+// Candidate poles (a Fibonacci sphere, plus the stumps' axes) and seam directions per pole for the sphere face.
+constexpr int kPoleCandidates = 96;
+constexpr int kSeamCandidates = 36;
 
 gp_Pnt pnt(const Vec3& v) { return gp_Pnt(v.x, v.y, v.z); }
 gp_Dir dir(const Vec3& v) { return gp_Dir(v.x, v.y, v.z); }
@@ -85,7 +91,6 @@ Handle(Geom_Surface) cone_surface(const Cone& k) {
   return new Geom_ConicalSurface(cone_frame(k), -std::asin(k.s), k.c);
 }
 
-Cone make_cone(const CoreStump& st) { return hull::make_cone(st.direction, st.sin_phi); }
 
 // ---------------------------------------------------------------------------------------------------------------
 // pcurves of arcs on elementary surfaces, approximated with the arc's own parameter.
@@ -239,41 +244,55 @@ struct CoreEdge {
   bool on_sphere() const { return face_b < 0; }
 };
 
-// Frame for the sphere face: poles and seam well inside the union of caps (so the face meets neither).
-bool choose_sphere_frame(const std::vector<Cone>& cones, Vec3& z_out, Vec3& x_out) {
+// The ball's radius R where the cones (tangent to the unit sphere) leave it at exit_v: |x|^2 = 1 + v^2.
+double ball_radius(const Cone& k) { return std::sqrt(1.0 + k.exit_v * k.exit_v); }
+
+// Cone k's exit cap on the ball, as a cap of the unit sphere of directions: d.x >= height.
+double exit_cap_height(const Cone& k) { return (k.s + k.exit_v * k.c) / ball_radius(k); }
+
+// Frame for the sphere face: its poles and seam either well inside the union of the exit caps (crowded caps: the
+// face is bounded by its loops alone) or well outside every cap (the face keeps the sphere's natural boundary,
+// the seam and the poles, and every loop around caps is a hole), whichever leaves the wider margin.
+struct SphereFrame {
+  Vec3 z, x;
+  bool seam_inside_caps = true;
+  double margin = -1e300;
+};
+
+SphereFrame choose_sphere_frame(const std::vector<Cone>& cones) {
   auto inside_margin = [&](const Vec3& p) {
     double m = -1e300;
-    for (const Cone& k : cones) m = std::max(m, glm::dot(k.d, p) - k.s);
+    for (const Cone& k : cones) m = std::max(m, glm::dot(k.d, p) - exit_cap_height(k));
     return m;
   };
   std::vector<Vec3> poles;
   const double golden = M_PI * (3.0 - std::sqrt(5.0));
-  for (int i = 0; i < 96; ++i) {
-    const double zc = 1.0 - (2.0 * i + 1.0) / 96, r = std::sqrt(1.0 - zc * zc);
+  for (int i = 0; i < kPoleCandidates; ++i) {
+    const double zc = 1.0 - (2.0 * i + 1.0) / kPoleCandidates, r = std::sqrt(1.0 - zc * zc);
     poles.emplace_back(r * std::cos(golden * i), r * std::sin(golden * i), zc);
   }
   for (const Cone& k : cones) poles.push_back(k.d);
-  double best = -1e300;
+  SphereFrame best;
   for (const Vec3& z : poles) {
-    const double pole_margin = std::min(inside_margin(z), inside_margin(-z));
-    if (pole_margin <= best) continue;
+    const double north = inside_margin(z), south = inside_margin(-z);
+    // Margins for the seam inside the caps (m_in) and outside all of them (m_out).
+    const double pole_in = std::min(north, south), pole_out = std::min(-north, -south);
+    if (std::max(pole_in, pole_out) <= best.margin) continue;
     const Vec3 x0 = any_perpendicular(z), y0 = glm::cross(z, x0);
-    for (int k = 0; k < 36; ++k) {
-      const double a = kTwoPi * k / 36;
+    for (int k = 0; k < kSeamCandidates; ++k) {
+      const double a = kTwoPi * k / kSeamCandidates;
       const Vec3 x = std::cos(a) * x0 + std::sin(a) * y0;
-      double m = pole_margin;
-      for (int s = 1; s < kSeamSamples && m > best; ++s) {
+      double m_in = pole_in, m_out = pole_out;
+      for (int s = 1; s < kSeamSamples && std::max(m_in, m_out) > best.margin; ++s) {
         const double lat = -M_PI / 2 + M_PI * s / kSeamSamples;
-        m = std::min(m, inside_margin(std::cos(lat) * x + std::sin(lat) * z));
+        const double m = inside_margin(std::cos(lat) * x + std::sin(lat) * z);
+        m_in = std::min(m_in, m);
+        m_out = std::min(m_out, -m);
       }
-      if (m > best) {
-        best = m;
-        z_out = z;
-        x_out = x;
-      }
+      if (std::max(m_in, m_out) > best.margin) best = {z, x, m_in >= m_out, std::max(m_in, m_out)};
     }
   }
-  return best > kSeamMargin;
+  return best;
 }
 
 // What the steps of a hull-model core share: the cones and their arrangement, the edges between faces, and the
@@ -292,11 +311,12 @@ struct HullCoreBuild {
   double max_error = 0.0;  // of the approximated pcurves
 };
 
-// The tangent circle arc shared by cone i and the sphere, with the circle's parameter as the cone's u.
+// The exit circle arc shared by cone i and the sphere (its tangent circle in the hull model), with the circle's
+// parameter as the cone's u.
 CoreEdge sphere_edge(const Cone& k, int i, const hull::Piece& p) {
   CoreEdge e;
   e.face_a = i;
-  e.curve = new Geom_Circle(gp_Ax2(pnt(k.s * k.d), dir(k.d), dir(k.e)), k.c);
+  e.curve = new Geom_Circle(gp_Ax2(pnt((k.s + k.exit_v * k.c) * k.d), dir(k.d), dir(k.e)), k.c - k.exit_v * k.s);
   e.t0 = e.a_u0 = p.u0;
   e.t1 = e.a_u1 = p.u1;
   e.forward_on_a = true;
@@ -391,12 +411,13 @@ void make_core_topology(HullCoreBuild& h) {
   }
 }
 
-// Each edge's pcurves on its cones: the tangent circle is the line v = 0; conic arcs are approximated with the
+// Each edge's pcurves on its cones: the exit circle is the line v = exit_v; conic arcs are approximated with the
 // arc's own parameter, u unwrapped along the piece each face runs.
 void add_cone_pcurves(HullCoreBuild& h) {
   for (CoreEdge& e : h.edges) {
     if (e.on_sphere()) {
-      h.builder.UpdateEdge(e.edge, new Geom2d_Line(gp_Pnt2d(0, 0), gp_Dir2d(1, 0)), h.cone_faces[e.face_a],
+      const double v = h.cones[e.face_a].exit_v;
+      h.builder.UpdateEdge(e.edge, new Geom2d_Line(gp_Pnt2d(0, v), gp_Dir2d(1, 0)), h.cone_faces[e.face_a],
                            kCoreTolerance);
       continue;
     }
@@ -454,12 +475,25 @@ TopoDS_Edge close_cone_face(HullCoreBuild& h, int i) {
   return collar;
 }
 
-// A closed loop of sphere arcs, run backwards (the caps on its right), with its signed area in the sphere's
-// (u, v): positive for an outer boundary, negative for a hole.
+// A closed loop of sphere arcs, run backwards (the caps on its right), as a polygon in the sphere's (u, v) with
+// its signed area: positive for an outer boundary, negative for a hole.
 struct SphereLoop {
   std::vector<std::size_t> arcs;
+  std::vector<gp_Pnt2d> polygon;
   double area = 0.0;
+  bool contains(const gp_Pnt2d& p) const;
 };
+
+bool SphereLoop::contains(const gp_Pnt2d& p) const {
+  bool in = false;
+  for (std::size_t k = 0, j = polygon.size() - 1; k < polygon.size(); j = k++) {
+    const gp_Pnt2d &a = polygon[k], &b = polygon[j];
+    if ((a.Y() > p.Y()) != (b.Y() > p.Y()) &&
+        p.X() < a.X() + (b.X() - a.X()) * (p.Y() - a.Y()) / (b.Y() - a.Y()))
+      in = !in;
+  }
+  return in;
+}
 
 std::vector<SphereLoop> sphere_loops(const HullCoreBuild& h, const std::vector<std::size_t>& sphere_arcs,
                                      std::map<std::size_t, Handle(Geom2d_Curve)>& pcurve) {
@@ -479,42 +513,44 @@ std::vector<SphereLoop> sphere_loops(const HullCoreBuild& h, const std::vector<s
       if (next == by_end.end() || used[next->second]) unsupported("the part of the ball between the stumps is not closed");
       k = next->second;
     }
-    // Shoelace area, run backwards along each arc.
+    // Polygon and shoelace area, run backwards along each arc.
     for (std::size_t a : loop.arcs) {
       const CoreEdge& e = h.edges[a];
-      for (int s = 0; s < 32; ++s) {
-        const gp_Pnt2d p = pcurve[a]->Value(e.t1 - (e.t1 - e.t0) * s / 32.0);
-        const gp_Pnt2d q = pcurve[a]->Value(e.t1 - (e.t1 - e.t0) * (s + 1) / 32.0);
-        loop.area += 0.5 * (p.X() * q.Y() - q.X() * p.Y());
-      }
+      for (int s = 0; s < 32; ++s) loop.polygon.push_back(pcurve[a]->Value(e.t1 - (e.t1 - e.t0) * s / 32.0));
+    }
+    for (std::size_t k = 0; k < loop.polygon.size(); ++k) {
+      const gp_Pnt2d &p = loop.polygon[k], &q = loop.polygon[(k + 1) % loop.polygon.size()];
+      loop.area += 0.5 * (p.X() * q.Y() - q.X() * p.Y());
     }
     loops.push_back(loop);
   }
   return loops;
 }
 
-// The sphere: the region outside all near caps, bounded by the sphere arcs, with its poles and seam inside the
-// caps. Outer loops (counterclockwise) become faces; holes (clockwise) join the one outer loop around them.
+// The sphere: the region outside all exit caps, bounded by the sphere arcs. Outer loops (counterclockwise in
+// (u, v)) become faces; where the seam and poles lie outside the caps, one more face keeps the sphere's natural
+// boundary. Each hole (clockwise) joins the outer loop around it, or the natural face.
 void build_sphere_faces(HullCoreBuild& h) {
   std::vector<std::size_t> sphere_arcs;
   for (std::size_t k = 0; k < h.edges.size(); ++k)
     if (h.edges[k].on_sphere()) sphere_arcs.push_back(k);
   if (sphere_arcs.empty()) return;
-  Vec3 z, x;
-  if (!choose_sphere_frame(h.cones, z, x))
+  const SphereFrame frame = choose_sphere_frame(h.cones);
+  if (!(frame.margin > kSeamMargin))
     unsupported("the part of the ball between the stumps leaves no room for the sphere's seam");
   SphereLayout layout;
-  layout.z = z;
-  layout.x = x;
+  layout.z = frame.z;
+  layout.x = frame.x;
   for (const Cone& k : h.cones) {
     CircleLayout c;
-    c.cap = {k.d, k.s};
+    c.cap = {k.d, exit_cap_height(k)};
     c.e1 = k.e;
     c.e2 = k.f;
-    c.rho = k.c;
+    c.rho = (k.c - k.exit_v * k.s) / ball_radius(k);
     layout.circles.push_back(c);
   }
-  Handle(Geom_SphericalSurface) sphere = new Geom_SphericalSurface(gp_Ax3(gp::Origin(), dir(z), dir(x)), 1.0);
+  Handle(Geom_SphericalSurface) sphere =
+      new Geom_SphericalSurface(gp_Ax3(gp::Origin(), dir(frame.z), dir(frame.x)), ball_radius(h.cones[0]));
   std::map<std::size_t, Handle(Geom2d_Curve)> pcurve;
   for (std::size_t k : sphere_arcs) {
     SphereArc f(layout, h.edges[k].face_a);
@@ -531,35 +567,49 @@ void build_sphere_faces(HullCoreBuild& h) {
     w.Closed(true);
     h.builder.Add(face, w);
   };
+  std::vector<const SphereLoop*> outer;
   for (const SphereLoop& loop : loops) {
     if (loop.area <= 0) continue;
     TopoDS_Face face;
     h.builder.MakeFace(face, sphere, kCoreTolerance);
     add_loop(loop, face);
     h.sphere_faces.push_back(face);
+    outer.push_back(&loop);
   }
-  if (h.sphere_faces.empty()) unsupported("the part of the ball between the stumps has no outer boundary");
+  if (!frame.seam_inside_caps) {
+    // The sphere's own seam and degenerate pole edges bound this face.
+    h.sphere_faces.push_back(BRepLib_MakeFace(sphere, 0.0, kTwoPi, -M_PI / 2, M_PI / 2, kCoreTolerance).Face());
+  } else if (h.sphere_faces.empty()) {
+    unsupported("the part of the ball between the stumps has no outer boundary");
+  }
   for (const SphereLoop& loop : loops) {
     if (loop.area > 0) continue;
-    if (h.sphere_faces.size() != 1) unsupported("the part of the ball between the stumps has holes and several pieces");
-    add_loop(loop, h.sphere_faces[0]);
+    std::size_t face = outer.size();  // the natural face, if no outer loop holds the hole
+    for (std::size_t k = 0; k < outer.size(); ++k)
+      if (outer[k]->contains(loop.polygon.front())) face = k;
+    if (face == h.sphere_faces.size()) unsupported("a hole in the part of the ball between the stumps lies in no face");
+    add_loop(loop, h.sphere_faces[face]);
   }
   for (std::size_t k : sphere_arcs) h.builder.Range(h.edges[k].edge, h.edges[k].t0, h.edges[k].t1);
 }
 
-// The hull-model core without Booleans: each cone's face between its envelope and its collar, the sphere
-// outside all caps (docs/brep.md, section 6).
-std::shared_ptr<const HubCore> build_hull_core(const std::vector<CoreStump>& stumps, const std::vector<double>& collars) {
+// The core without Booleans when all stumps share their end radius rho (the hull model: rho = 1): each cone's
+// face between its envelope and its collar, the sphere outside all caps (docs/brep.md, section 6). Built with the
+// cones tangent to the unit sphere (the ball's radius is then 1 / rho) and scaled by rho into the canonical frame.
+std::shared_ptr<const HubCore> build_envelope_core(const std::vector<CoreStump>& stumps, CoreKind kind,
+                                                   const std::vector<double>& collars) {
   const int n = static_cast<int>(stumps.size());
+  const double rho = stumps[0].end_radius, ball = 1.0 / rho;
+  const double exit_v = kind == CoreKind::Hull ? 0.0 : std::sqrt((ball - 1.0) * (ball + 1.0));
   HullCoreBuild h;
-  for (const CoreStump& s : stumps) h.cones.push_back(make_cone(s));
-  for (int i = 0; i < n; ++i) h.v_collar.push_back((collars[i] - h.cones[i].s) / h.cones[i].c);
+  for (const CoreStump& s : stumps) h.cones.push_back(hull::make_cone(s.direction, s.sin_phi, exit_v));
+  for (int i = 0; i < n; ++i) h.v_collar.push_back((collars[i] * ball - h.cones[i].s) / h.cones[i].c);
   h.arrangement = hull::arrange_envelopes(h.cones, h.v_collar);
   collect_core_edges(h);
   make_core_topology(h);
   add_cone_pcurves(h);
   auto out = std::make_shared<HubCore>();
-  out->kind = CoreKind::Hull;
+  out->kind = kind;
   out->collar_position = collars;
   for (int i = 0; i < n; ++i) out->collars.push_back(close_cone_face(h, i));
   // Ranges last: they apply to every representation of the edge.
@@ -573,6 +623,12 @@ std::shared_ptr<const HubCore> build_hull_core(const std::vector<CoreStump>& stu
   for (TopoDS_Face& f : h.cone_faces) h.builder.Add(out->faces, f);
   for (TopoDS_Face& f : h.sphere_faces) h.builder.Add(out->faces, f);
   out->face_count = static_cast<std::int64_t>(h.cone_faces.size() + h.sphere_faces.size());
+  if (rho == 1.0) return out;  // the hull model: built in place
+  gp_Trsf scale;
+  scale.SetScale(gp::Origin(), rho);
+  BRepBuilderAPI_Transform placed(out->faces, scale, true);
+  for (TopoDS_Edge& collar : out->collars) collar = TopoDS::Edge(placed.ModifiedShape(collar));
+  out->faces = TopoDS::Compound(placed.Shape());
   return out;
 }
 
@@ -700,6 +756,7 @@ std::shared_ptr<const HubCore> fuse_core(const std::vector<CoreStump>& stumps, c
                                          const gp_Ax2& ball_frame) {
   auto out = std::make_shared<HubCore>();
   out->kind = CoreKind::Transversal;
+  out->fused = true;
   out->collar_position = collars;
   TopTools_ListOfShape args, tools;
   args.Append(BRepPrimAPI_MakeSphere(ball_frame, 1.0).Shape());
@@ -826,7 +883,29 @@ std::shared_ptr<const HubCore> build_transversal_core(const std::vector<CoreStum
 std::shared_ptr<const HubCore> build_hub_core(const std::vector<CoreStump>& stumps, CoreKind kind,
                                               const std::vector<double>& collars) {
   if (stumps.empty()) unsupported("a hub core needs stumps");
-  return kind == CoreKind::Hull ? build_hull_core(stumps, collars) : build_transversal_core(stumps, collars);
+  if (kind == CoreKind::Hull) return build_envelope_core(stumps, kind, collars);
+  // Transversal stumps of one end radius: the same exact construction, no Boolean; else (or where a stump is
+  // swallowed up to its collar, or the seam finds no room) the Fuse.
+  // Tangent exit caps (beams exactly as far apart as their caps are wide) give cusps the arrangement builds but
+  // OpenCASCADE refuses as self-intersecting wires: such a core is checked and given to the Fuse.
+  if (share_end_radius(stumps)) {
+    try {
+      std::shared_ptr<const HubCore> core = build_envelope_core(stumps, kind, collars);
+      if (BRepCheck_Analyzer(core->faces).IsValid()) return core;
+    } catch (const InvalidInput&) {
+    }
+  }
+  // The Fuse with the collars asked for (the beams may not fit the others), else with collars whose angular
+  // cones stay apart (its collar disks then surely come out untouched); the core reports the ones it used in
+  // collar_position.
+  const std::vector<double> apart = place_collars(stumps, kind, kMaxCollarPosition);
+  if (apart != collars) {
+    try {
+      return build_transversal_core(stumps, collars);
+    } catch (const InvalidInput&) {
+    }
+  }
+  return build_transversal_core(stumps, apart);
 }
 
 }  // namespace steady

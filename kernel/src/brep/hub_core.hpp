@@ -14,8 +14,13 @@
 // with the neighbouring cones) and tangent circle arcs (shared with the sphere), and above by its collar.
 // No Boolean ever sees the tangent contact of a cone with the sphere.
 //
-// Transversal (explicit end radii thinner than the node, exit circles overlapping): one Boolean Fuse of the
-// ball with the stumps truncated at their collars; every contact is transversal.
+// Transversal stumps of one end radius rho < 1 (explicit beam radii, the same for every beam at this node): the
+// same construction. Every cone is tangent to the sphere of radius rho inside the ball, so scaled by 1 / rho it
+// is the hull model's arrangement with the ball's sphere at v = sqrt(1 / rho^2 - 1) instead of v = 0 along the
+// generators; still no Boolean.
+//
+// Other transversal hubs (end radii that differ): one Boolean Fuse of the ball with the stumps truncated at their
+// collars; every contact is transversal. It is also the fallback where the arrangement refuses a hub.
 #include <TopoDS_Compound.hxx>
 #include <TopoDS_Edge.hxx>
 
@@ -33,11 +38,19 @@ struct HubCore {
   std::vector<TopoDS_Edge> collars;   // per stump: its collar circle, one closed edge
   std::vector<double> collar_position;  // per stump: axial position of the collar (canonical)
   std::int64_t face_count = 0;
+  bool fused = false;                 // built by the Boolean Fuse (else by the envelope arrangement)
 };
 
-// Builds the core. Throws InvalidInput ("hub") for configurations outside the supported class (a stump swallowed
-// by its neighbours, a conic through a cone's apex, a sphere region the seam cannot avoid).
+// Builds the core with the given collars (core_collars). Transversal stumps of one end radius go through the
+// arrangement first; a core it refuses or OpenCASCADE finds invalid (tangent exit caps) is fused instead, with
+// place_collars' collars: the core's collar_position says which were used. Throws InvalidInput ("hub") for
+// configurations outside the supported class (a stump swallowed by its neighbours, a conic through a cone's apex,
+// a collar touched by the Fuse).
 std::shared_ptr<const HubCore> build_hub_core(const std::vector<CoreStump>& stumps, CoreKind kind,
                                               const std::vector<double>& collars);
+
+// The Boolean construction of a transversal core alone: the slow twin of the arrangement in the tests.
+std::shared_ptr<const HubCore> build_transversal_core(const std::vector<CoreStump>& stumps,
+                                                      const std::vector<double>& collars);
 
 }  // namespace steady

@@ -13,7 +13,11 @@ TrimResult make_part(const FlatLattice& lattice, const LatticePartRequest& reque
   TrimResult out;
   if (!request.body_brep) {
     if (request.trim.skin != 0.0) fail_input("skin", "needs a body to wrap");
-    out.part = out.lattice = build_lattice_brep(lattice, SeamPreference::FewestCrossings, progress).shape;
+    const LatticeBrep built = build_lattice_brep(lattice, SeamPreference::FewestCrossings, progress);
+    out.part = out.lattice = built.shape;
+    out.stats.core_hubs = built.stats.core_hubs;
+    out.stats.distinct_cores = built.stats.distinct_cores;
+    out.stats.fused_cores = built.stats.fused_cores;
     return out;
   }
   return trim_lattice(lattice, brep_from_text(*request.body_brep, "body"), request.trim, progress);

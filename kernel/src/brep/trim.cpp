@@ -65,6 +65,7 @@ BuiltHubs build_hubs(const FlatLattice& f, const HubRoles& roles, const CutPlan&
   for (const BrepPieces* p : {&out.band, &out.interior}) {
     stats.core_hubs += p->stats.core_hubs;
     stats.distinct_cores += p->stats.distinct_cores;
+    stats.fused_cores += p->stats.fused_cores;
   }
   report(options, "trim: built the boundary and interior hubs in " + std::to_string(stats.build_seconds) + " s (" +
                       std::to_string(out.band.stats.distinct_cores) + " and " +
@@ -114,6 +115,7 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
   const Bodies bodies = make_bodies(body_shape, options, budget);
   if (bodies.skin) out.skin = bodies.skin->skin;
   std::vector<BeamFrustum> frustums = beam_frustums(f);  // place_cuts moves some cuts
+  place_cuts_between_collars(f, frustums);               // before the hubs' reach is classified
   const std::vector<char> absorbed = absorbed_balls(f, frustums);
   const HubStates states = classify(f, frustums, absorbed, bodies, stats, budget);
   stats.classify_seconds = seconds_since(clock);

@@ -84,6 +84,9 @@ CutPlan place_cuts(const FlatLattice& f, const HubRoles& roles, const Bodies& bo
   plan.moved.assign(f.beam_count(), 0);
   Roots roots(f.ball_count());
   CutPlacer placer(f, roles, plan.boundary, kClearanceRelative * bodies.body.size(), frustums, stats);
+  // Where each cut was before this step (halfway, or between crowded hubs' collars), to go back to.
+  std::vector<double> first_place(f.beam_count());
+  for (std::int64_t e = 0; e < f.beam_count(); ++e) first_place[e] = frustums[e].cut_fraction;
   for (std::int64_t e = 0; e < f.beam_count(); ++e) {
     if (!roles.beam_kept[e] || !roles.band[f.beams[e].a] || !roles.band[f.beams[e].b]) continue;
     progress.advance();
@@ -110,7 +113,7 @@ CutPlan place_cuts(const FlatLattice& f, const HubRoles& roles, const Bodies& bo
   for (std::int64_t e = 0; e < f.beam_count(); ++e)
     if (plan.split[e] && roots.find(f.beams[e].a) == roots.find(f.beams[e].b)) {
       plan.split[e] = plan.moved[e] = 0;
-      frustums[e].cut_fraction = 0.5;
+      frustums[e].cut_fraction = first_place[e];
     }
   stats.moved_cuts = std::count(plan.moved.begin(), plan.moved.end(), 1);
   plan.cut_fractions.resize(f.beam_count());

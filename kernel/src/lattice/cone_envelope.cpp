@@ -82,8 +82,9 @@ double Cone::w(const Vec3& x) const { return (glm::dot(d, x) - s) / c; }
 
 double Cone::u_of(const Vec3& x) const { return std::atan2(glm::dot(x, f), glm::dot(x, e)); }
 
-Cone make_cone(const Vec3& direction, double sin_phi) {
+Cone make_cone(const Vec3& direction, double sin_phi, double exit_v) {
   Cone k;
+  k.exit_v = exit_v;
   k.d = glm::normalize(direction);
   k.e = any_perpendicular(k.d);
   k.f = glm::cross(k.d, k.e);
@@ -104,7 +105,7 @@ Bound bound_from(const Cone& ki, const Cone& kj, double u) {
 }
 
 Active envelope_at(const std::vector<Cone>& cones, int i, double u) {
-  Active a;
+  Active a{-1, cones[i].exit_v};
   for (int j = 0; j < static_cast<int>(cones.size()); ++j) {
     if (j == i) continue;
     const Bound b = bound_from(cones[i], cones[j], u);
@@ -134,8 +135,9 @@ std::vector<double> breakpoint_candidates(const std::vector<Cone>& cones, int i)
     if (j == i) continue;
     const Cone& kj = cones[j];
     const double dd = glm::dot(kj.d, ki.d), de = glm::dot(kj.d, ki.e), df = glm::dot(kj.d, ki.f);
-    // A_j(u) = 0: the envelope of j crosses the tangent circle.
-    trig_roots(ki.s * dd - kj.s, ki.c * de, ki.c * df, us);
+    // A_j(u) = exit_v D_j(u): the bound of j crosses the exit circle (the tangent circle in the hull model).
+    const double x = ki.exit_v;
+    trig_roots(ki.s * dd - kj.s - x * (kj.c - ki.c * dd), (ki.c - x * ki.s) * de, (ki.c - x * ki.s) * df, us);
     // D_j(u) = 0: j switches between lower and upper bound.
     trig_roots(kj.c - ki.c * dd, ki.s * de, ki.s * df, us);
     for (int k = j + 1; k < n; ++k) {
@@ -162,7 +164,7 @@ std::vector<double> breakpoint_candidates(const std::vector<Cone>& cones, int i)
       for (double tau : taus) {
         const Vec3 x = p0 + tau * q;
         const double v = ki.w(x);
-        if (v < -1e-9 || ki.c - v * ki.s <= 0.0) continue;  // behind the tangent circle, or on the other nappe
+        if (v < ki.exit_v - 1e-9 || ki.c - v * ki.s <= 0.0) continue;  // inside the ball, or on the other nappe
         us.push_back(ki.u_of(x));
       }
     }

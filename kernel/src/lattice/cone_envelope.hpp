@@ -1,7 +1,9 @@
 #pragma once
 // The hull model of a hub, without OpenCASCADE: the unit ball with one cone per stump, each tangent to the ball.
 // On each cone, the hull's surface runs from the stump's tangent circle up to the envelope where another stump
-// (or the ball) takes over. This file finds that envelope exactly: along each generator of cone i, the first point
+// (or the ball) takes over. The same holds for a ball of radius R > 1 whose stumps are all tangent to the unit
+// sphere inside it (beams whose end radius at this node is the same for all, scaled to 1): each cone then leaves
+// the ball at v = sqrt(R^2 - 1), its exit_v, instead of at its tangent circle. This file finds that envelope exactly: along each generator of cone i, the first point
 // where no other stump dominates, and around the cone the pieces where one stump (or the ball) stays the active
 // neighbour, with their shared vertices. The B-rep hub core (brep/hub_core.cpp) turns the arrangement into faces;
 // docs/brep.md explains the construction.
@@ -25,17 +27,19 @@ constexpr int kEnvelopeProbes = 256;
 
 // A cone tangent to the unit sphere along its circle at height s: points s d + (c - v s) r(u) + v c d with
 // r(u) = cos u e + sin u f, c = cos(phi), s = sin(phi). v = 0 is the tangent circle; w(x) is the v of the
-// plane through x orthogonal to d.
+// plane through x orthogonal to d. |point(u, v)|^2 = 1 + v^2, so the cone leaves the ball of radius R at
+// exit_v = sqrt(R^2 - 1), the same v for every cone of a hub (0 in the hull model, R = 1).
 struct Cone {
   Vec3 d{0.0, 0.0, 1.0}, e{1.0, 0.0, 0.0}, f{0.0, 1.0, 0.0};
   double s = 0.0, c = 1.0;
+  double exit_v = 0.0;
   Vec3 point(double u, double v) const;
   double w(const Vec3& x) const;
   double u_of(const Vec3& x) const;
 };
 
-// The cone of a stump leaving along `direction` (any length) with sin(phi) = sin_phi.
-Cone make_cone(const Vec3& direction, double sin_phi);
+// The cone of a stump leaving along `direction` (any length) with sin(phi) = sin_phi, leaving the ball at exit_v.
+Cone make_cone(const Vec3& direction, double sin_phi, double exit_v = 0.0);
 
 // On cone i along generator u, stump j dominates (w_j > w_i) below v = t (Lower), above it (Upper), along the
 // whole generator (Never: i never dominates j there) or nowhere (Always: i always does).
@@ -45,8 +49,8 @@ struct Bound {
 };
 Bound bound_from(const Cone& ki, const Cone& kj, double u);
 
-// Where cone i's generator u leaves the region dominated by others: the active neighbour (-1: none, the ball's
-// tangent circle v = 0 bounds it) and the envelope's v there.
+// Where cone i's generator u leaves the region dominated by others: the active neighbour (-1: none, the ball
+// bounds it at v = exit_v) and the envelope's v there.
 struct Active {
   int index = -1;
   double v = 0.0;
@@ -58,7 +62,7 @@ Active envelope_at(const std::vector<Cone>& cones, int i, double u);
 double ceiling_at(const std::vector<Cone>& cones, int i, double u);
 
 // Generators u in [0, 2 pi) where the active neighbour of cone i can change (sorted, distinct): where a bound
-// crosses the tangent circle, switches between lower and upper, or where three cones meet.
+// crosses the exit circle, switches between lower and upper, or where three cones meet.
 std::vector<double> breakpoint_candidates(const std::vector<Cone>& cones, int i);
 
 // One arc of the envelope with a constant active neighbour: u from u0 to u1 (u1 - u0 = 2 pi for a closed arc)

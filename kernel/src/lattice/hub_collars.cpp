@@ -23,7 +23,49 @@ constexpr double kCollarAngleShare = 0.9;
 using hull::Cone;
 Cone make_cone(const CoreStump& st) { return hull::make_cone(st.direction, st.sin_phi); }
 
+// Collars just beyond each stump's envelope in the arrangement of stumps sharing their end radius (scaled to the
+// unit sphere, the ball's sphere at exit_v). Empty when another stump dominates some generator again farther out
+// (stumps meeting away from the hub: the conservative collars then decide) or a collar would come near the apex.
+std::vector<double> envelope_collars(const std::vector<CoreStump>& stumps) {
+  const double rho = stumps[0].end_radius, ball = 1.0 / rho;
+  const double exit_v = std::sqrt((ball - 1.0) * (ball + 1.0));
+  std::vector<Cone> cones;
+  for (const CoreStump& st : stumps) cones.push_back(hull::make_cone(st.direction, st.sin_phi, exit_v));
+  std::vector<double> collars;
+  for (int i = 0; i < static_cast<int>(cones.size()); ++i) {
+    std::vector<double> us = hull::breakpoint_candidates(cones, i);
+    for (int k = 0; k < hull::kEnvelopeProbes; ++k) us.push_back(kTwoPi * k / hull::kEnvelopeProbes);
+    double top = exit_v;
+    for (double u : us) {
+      if (hull::ceiling_at(cones, i, u) < std::numeric_limits<double>::infinity()) return {};
+      top = std::max(top, hull::envelope_at(cones, i, u).v);
+    }
+    // Twice the clearance the arrangement checks at its probes: the envelope may peak between them.
+    const double v = top + 2.0 * kCollarClearance;
+    const Cone& k = cones[i];
+    if (!(k.c - v * k.s > 0.1 * k.c)) return {};
+    collars.push_back((k.s + v * k.c) * rho);
+  }
+  return collars;
+}
+
 }  // namespace
+
+bool share_end_radius(const std::vector<CoreStump>& stumps) {
+  if (stumps.empty()) return false;
+  for (const CoreStump& s : stumps)
+    if (!(std::abs(s.end_radius - stumps[0].end_radius) <= 1e-12 * stumps[0].end_radius)) return false;
+  return stumps[0].end_radius > 0.0 && stumps[0].end_radius <= 1.0;
+}
+
+std::vector<double> core_collars(const std::vector<CoreStump>& stumps, CoreKind kind, double max_position) {
+  // The hull model is the case rho = 1.
+  if (share_end_radius(stumps)) {
+    std::vector<double> tight = envelope_collars(stumps);
+    if (!tight.empty()) return tight;
+  }
+  return place_collars(stumps, kind, max_position);
+}
 
 // How far the ray from the center along unit w stays in stump i: the stump is the beam's cone region between the
 // plane where the cone touches its end ball (axial r0 sin_phi) and the collar; the ray meets it in an interval,

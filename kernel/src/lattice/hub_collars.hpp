@@ -27,6 +27,17 @@ enum class CoreKind { Hull, Transversal };
 // (field "hub") when no collar up to `max_position` works.
 std::vector<double> place_collars(const std::vector<CoreStump>& stumps, CoreKind kind, double max_position);
 
+// Whether every stump has the same end radius rho (0 < rho <= 1): then all cones are tangent to one sphere around
+// the ball's center, and the B-rep builds the core from their envelope arrangement without a Boolean.
+bool share_end_radius(const std::vector<CoreStump>& stumps);
+
+// The collars a B-rep core uses. Stumps of one end radius (the hull model, or explicit radii equal at the node): each collar just beyond the envelope where
+// the other stumps meet its stump (plus clearance), when no stump meets another again farther out; much closer
+// to the ball than place_collars, whose collars must also see each other's angular cones apart (needed by the
+// mesh's radial graph and the Boolean, not by the arrangement), so thick beams still fit between two hubs.
+// Otherwise place_collars.
+std::vector<double> core_collars(const std::vector<CoreStump>& stumps, CoreKind kind, double max_position);
+
 // A crowded hub's stumps from its canonical caps and the slopes and end radii in its geometry's extras (see
 // hub_geometry), and which kind of core its HubGeometry::kind asks for.
 std::vector<CoreStump> core_stumps(const std::vector<SphereCap>& caps, const std::vector<double>& extras);

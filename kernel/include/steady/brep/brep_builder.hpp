@@ -36,6 +36,7 @@ struct BrepBuildStats {
   std::int64_t seam_crossing_circles = 0;  // circles of distinct hub shapes crossed by their sphere's seam
   std::int64_t core_hubs = 0;      // hubs whose exit circles overlap, built from a core (hub_core.hpp)
   std::int64_t distinct_cores = 0;
+  std::int64_t fused_cores = 0;    // of those, built by a Boolean Fuse (stumps of unequal end radii, tangent caps)
   std::int64_t joints = 0;         // circles added inside beams to join two fixed seams
   double layout_seconds = 0.0;     // catalog, sphere layouts and (u, v) curves
   double topology_seconds = 0.0;   // vertices, edges, faces

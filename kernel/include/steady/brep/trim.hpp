@@ -59,7 +59,7 @@ struct TrimStats {
   std::int64_t fuzzy_clusters = 0;        //   with a fuzzy Common (1e-4 or 1e-3 of their size)
   std::int64_t holed_clusters = 0;        // with a skin: clusters glued to it by holes in its inner faces, no
                                           // Boolean (the others by a glued Fuse)
-  std::int64_t core_hubs = 0, distinct_cores = 0;  // crowded hubs built from cores, and the cores built
+  std::int64_t core_hubs = 0, distinct_cores = 0, fused_cores = 0;  // crowded hubs built from cores, and the cores built
   bool relaid_out = false;                // the first attempt failed as a whole; a later one (every cut halfway,
                                           // or the spheres laid out the other way) made the part
   std::string relaid_reason;              //   why the earlier attempts failed

@@ -1,0 +1,106 @@
+"""Issue 17's robustness sweep: crowded hubs of every preset, node radius, beam/node ratio and kind of step.
+
+Each case builds the lattice's B-rep (no body) and checks it against the closed-form properties: one valid solid
+per connected lattice, volume equal to the exact one to 1e-7 relative. A case either passes, is refused because
+elements of different hubs meet (the clean check's business, not a hub's), is refused because a beam is too short
+for the collars of its two crowded hubs (the message must name the beam), or fails.
+
+`python3 crowded_sweep.py [--long]` prints every case and the counts; test_crowded_hubs.py runs the short sweep.
+"""
+import itertools
+import math
+import sys
+import time
+
+import steadylattice as sl
+
+VOLUME_TOLERANCE = 1e-7
+PRESETS = ["cubic", "BCC", "FCC", "octet", "diamond", "Kelvin"]
+
+
+def steps(kind):
+    """U, V, W steps of a unit cell for each kind of steady step (bends and tapers about far centres)."""
+    t = sl.Similarity.translation
+    u, v, w = t((1, 0, 0)), t((0, 1, 0)), t((0, 0, 1))
+    if kind == "screw":
+        w = sl.Similarity.screw(0.03, (0, 0, 1), (0.5, 0.5, 0), 1.0)
+    elif kind == "bend":
+        u = sl.Similarity.swirl(-0.05, (0, 0, 1), (0, -20, 0), 1.0)
+    elif kind == "taper":
+        u = sl.Similarity.dilation(1.05, (-20, 0.5, 0.5))
+    elif kind == "twisted taper":
+        u = sl.Similarity.swirl(0.03, (1, 0, 0), (-20, 0.5, 0.5), 1.05)
+    return u, v, w
+
+
+def lattice(preset, node_fraction, ratio, step, counts):
+    """node_fraction: node radius over the preset's neighbour distance; ratio: beam radius over node radius, or
+    None for the hull model (beams tangent to their balls)."""
+    p = sl.preset(preset)
+    node = node_fraction * p["neighbour_distance"]
+    nodes = [(tuple(b), node) for b in p["basis"]]
+    beams = [tuple(pat) + ((node * ratio, node * ratio) if ratio is not None else ()) for pat in p["patterns"]]
+    return sl.Lattice(nodes, beams, counts, *steps(step))
+
+
+def run_case(preset, node_fraction, ratio, step, counts=(2, 2, 2)):
+    """(outcome, detail, seconds): outcome is 'built', 'foreign', 'too short' or 'failed'."""
+    lat = lattice(preset, node_fraction, ratio, step, counts)
+    start = time.perf_counter()
+    try:
+        stats = {}
+        text = lat.brep(stats=stats)
+    except ValueError as error:
+        message = str(error)
+        seconds = time.perf_counter() - start
+        if "is not clean" in message:
+            return "foreign", message[:120], seconds
+        if "too short for the collar" in message and "beam " in message:
+            return "too short", message[:160], seconds
+        return "failed", message[:300], seconds
+    except RuntimeError as error:
+        return "failed", str(error)[:300], time.perf_counter() - start
+    seconds = time.perf_counter() - start
+    props = sl.brep_properties(text)
+    exact = lat.properties()["volume"]
+    error = abs(props["volume"] / exact - 1.0)
+    detail = "%d cores (%d distinct, %d fused), volume error %.1e" % (
+        stats["core_hubs"], stats["distinct_cores"], stats["fused_cores"], error)
+    if not props["valid"] or props["solids"] != 1 or not error <= VOLUME_TOLERANCE:
+        return "failed", "valid %s, %d solids, %s" % (props["valid"], props["solids"], detail), seconds
+    return "built", detail, seconds
+
+
+def short_cases():
+    """About thirty cases across presets, ratios and steps (the default test run)."""
+    ratios = [0.3, 0.5, 0.64, 0.8, 1.0, None]
+    kinds = ["translation", "screw", "bend", "taper", "twisted taper"]
+    cases = []
+    for k, (preset, ratio) in enumerate(itertools.product(PRESETS, ratios)):
+        cases.append((preset, 0.35, ratio, kinds[k % len(kinds)]))
+    return cases
+
+
+def long_cases():
+    """At least 500 cases: every preset, three node radii, eight ratios and the hull model, five kinds of step."""
+    ratios = [0.3, 0.4, 0.5, 0.6, 0.64, 0.7, 0.8, 0.9, 1.0, None]
+    kinds = ["translation", "screw", "bend", "taper", "twisted taper"]
+    return list(itertools.product(PRESETS, [0.25, 0.35, 0.45], ratios, kinds))
+
+
+def sweep(cases, out=sys.stdout):
+    counts = {"built": 0, "foreign": 0, "too short": 0, "failed": 0}
+    results = []
+    for case in cases:
+        outcome, detail, seconds = run_case(*case)
+        counts[outcome] += 1
+        results.append((case, outcome, detail, seconds))
+        print("%-8s node %.2f ratio %-5s %-13s %-9s %6.2f s  %s" % (
+            case[0], case[1], "hull" if case[2] is None else case[2], case[3], outcome, seconds, detail),
+            file=out, flush=True)
+    print("cases %d: %s" % (len(cases), ", ".join("%s %d" % kv for kv in counts.items())), file=out, flush=True)
+    return counts, results
+
+
+if __name__ == "__main__":
+    sweep(long_cases() if "--long" in sys.argv else short_cases())
