@@ -257,14 +257,39 @@ struct SphereFrame {
   Vec3 z, x;
   bool seam_inside_caps = true;
   double margin = -1e300;
+  bool crossing = false;  // the seam crosses the face's loops (crossing_frame)
 };
 
-SphereFrame choose_sphere_frame(const std::vector<Cone>& cones) {
-  auto inside_margin = [&](const Vec3& p) {
-    double m = -1e300;
-    for (const Cone& k : cones) m = std::max(m, glm::dot(k.d, p) - exit_cap_height(k));
-    return m;
-  };
+// Where the seam crosses the boundary of the sphere face: its latitude, the cone whose exit circle it crosses,
+// and (once the arrangement is split there) the vertex.
+struct SeamCrossing {
+  double latitude = 0.0;
+  int cone = -1;
+  int vertex = -1;
+};
+
+// The exit cap nearest to containing p: its index, its margin d.p - height (> 0 inside) and the runner-up's.
+struct CapMargin {
+  int cap = -1;
+  double margin = -1e300, second = -1e300;
+};
+CapMargin cap_margin(const std::vector<Cone>& cones, const Vec3& p) {
+  CapMargin m;
+  for (int k = 0; k < static_cast<int>(cones.size()); ++k) {
+    const double x = glm::dot(cones[k].d, p) - exit_cap_height(cones[k]);
+    if (x > m.margin) {
+      m.second = m.margin;
+      m.margin = x;
+      m.cap = k;
+    } else {
+      m.second = std::max(m.second, x);
+    }
+  }
+  return m;
+}
+
+// Candidate poles of the sphere face's frame: a Fibonacci sphere and the stumps' axes.
+std::vector<Vec3> pole_candidates(const std::vector<Cone>& cones) {
   std::vector<Vec3> poles;
   const double golden = M_PI * (3.0 - std::sqrt(5.0));
   for (int i = 0; i < kPoleCandidates; ++i) {
@@ -272,6 +297,12 @@ SphereFrame choose_sphere_frame(const std::vector<Cone>& cones) {
     poles.emplace_back(r * std::cos(golden * i), r * std::sin(golden * i), zc);
   }
   for (const Cone& k : cones) poles.push_back(k.d);
+  return poles;
+}
+
+SphereFrame choose_sphere_frame(const std::vector<Cone>& cones) {
+  auto inside_margin = [&](const Vec3& p) { return cap_margin(cones, p).margin; };
+  const std::vector<Vec3> poles = pole_candidates(cones);
   SphereFrame best;
   for (const Vec3& z : poles) {
     const double north = inside_margin(z), south = inside_margin(-z);
@@ -295,12 +326,70 @@ SphereFrame choose_sphere_frame(const std::vector<Cone>& cones) {
   return best;
 }
 
+// A frame whose seam crosses the sphere face's loops (when neither inside nor outside every cap leaves room):
+// poles well inside a cap or well outside all, and every crossing clear of the other caps (so not near a vertex
+// of the loops) and transversal. The seam may leave the caps only around its poles: a stretch of it inside
+// the caps between two crossings would lay a hole across the periodic boundary, which OpenCASCADE accepts but
+// STEP readers rebuild as intersecting wires (section 5 of docs/brep.md). The margin is the worst of those clearances (cosine units) and a fifth of the
+// worst crossing's sine of angle.
+SphereFrame crossing_frame(const std::vector<Cone>& cones, std::vector<SeamCrossing>& crossings) {
+  const std::vector<Vec3> poles = pole_candidates(cones);
+  SphereFrame best;
+  best.crossing = true;
+  std::vector<SeamCrossing> found;
+  for (const Vec3& z : poles) {
+    const double pole = std::min(std::abs(cap_margin(cones, z).margin), std::abs(cap_margin(cones, -z).margin));
+    if (pole <= best.margin) continue;
+    const Vec3 x0 = any_perpendicular(z), y0 = glm::cross(z, x0);
+    for (int k = 0; k < kSeamCandidates; ++k) {
+      const double a = kTwoPi * k / kSeamCandidates;
+      const Vec3 x = std::cos(a) * x0 + std::sin(a) * y0;
+      auto at = [&](double lat) { return std::cos(lat) * x + std::sin(lat) * z; };
+      double score = pole;
+      bool entered = false;
+      found.clear();
+      double previous = cap_margin(cones, at(-M_PI / 2)).margin;
+      for (int s = 1; s <= kSeamSamples && score > best.margin; ++s) {
+        double lo = -M_PI / 2 + M_PI * (s - 1) / kSeamSamples, hi = -M_PI / 2 + M_PI * s / kSeamSamples;
+        const double here = cap_margin(cones, at(hi)).margin;
+        if ((previous > 0) != (here > 0)) {
+          const bool rising = here > 0;
+          // Out of the caps only at the first crossing, into them only at the last.
+          if (entered || (!rising && !found.empty())) score = -1e300;
+          entered = entered || rising;
+          for (int it = 0; it < 50; ++it) {
+            const double mid = 0.5 * (lo + hi);
+            ((cap_margin(cones, at(mid)).margin > 0) == rising ? hi : lo) = mid;
+          }
+          const double lat = 0.5 * (lo + hi);
+          const Vec3 p = at(lat), tangent = -std::sin(lat) * x + std::cos(lat) * z;
+          const CapMargin m = cap_margin(cones, p);
+          const Vec3 d = cones[m.cap].d, g = d - glm::dot(d, p) * p;
+          const double sine = std::abs(glm::dot(d, tangent)) / std::max(glm::length(g), 1e-300);
+          score = std::min({score, -m.second, 0.2 * sine});
+          found.push_back({lat, m.cap, -1});
+        }
+        previous = here;
+      }
+      if (score > best.margin) {
+        best.z = z;
+        best.x = x;
+        best.margin = score;
+        crossings = found;
+      }
+    }
+  }
+  return best;
+}
+
 // What the steps of a hull-model core share: the cones and their arrangement, the edges between faces, and the
 // OpenCASCADE topology as it is made.
 struct HullCoreBuild {
   std::vector<Cone> cones;
   std::vector<double> v_collar;  // each collar's v on its cone
   hull::Arrangement arrangement;
+  SphereFrame frame;                    // of the sphere face, chosen before the edges are made
+  std::vector<SeamCrossing> crossings;  // where its seam crosses the face's loops (a crossing frame only)
   std::vector<CoreEdge> edges;
   std::vector<std::vector<std::size_t>> face_edges;  // per cone, its edges in the order of its envelope's pieces
   BRep_Builder builder;
@@ -527,6 +616,219 @@ std::vector<SphereLoop> sphere_loops(const HullCoreBuild& h, const std::vector<s
   return loops;
 }
 
+// The frame of the sphere face, before the edges are made: its seam inside the caps or outside all of them if
+// either leaves room; else a seam crossing the face's loops, each crossed arc split there by a new vertex (an
+// arc never runs across the seam, so each keeps one (u, v) curve).
+void choose_frame_and_split(HullCoreBuild& h) {
+  bool sphere = false;
+  for (const hull::Envelope& env : h.arrangement.envelopes)
+    for (const hull::Piece& p : env.pieces) sphere = sphere || p.active < 0;
+  if (!sphere) return;
+  h.frame = choose_sphere_frame(h.cones);
+  if (h.frame.margin > kSeamMargin) return;
+  std::vector<SeamCrossing> crossings;
+  h.frame = crossing_frame(h.cones, crossings);
+  if (!(h.frame.margin > kSeamMargin))
+    unsupported("the part of the ball between the stumps leaves no room for the sphere's seam");
+  for (SeamCrossing& x : crossings) {
+    const Cone& k = h.cones[x.cone];
+    const double u = k.u_of(std::cos(x.latitude) * h.frame.x + std::sin(x.latitude) * h.frame.z);
+    std::vector<hull::Piece>& pieces = h.arrangement.envelopes[x.cone].pieces;
+    std::size_t at = pieces.size();
+    double uu = 0.0;
+    for (std::size_t q = 0; q < pieces.size() && at == pieces.size(); ++q) {
+      if (pieces[q].active >= 0) continue;
+      uu = pieces[q].u0 + std::fmod(std::fmod(u - pieces[q].u0, kTwoPi) + kTwoPi, kTwoPi);
+      if (uu > pieces[q].u0 + 1e-9 && uu < pieces[q].u1 - 1e-9) at = q;
+    }
+    if (at == pieces.size()) unsupported("the sphere's seam crosses a loop away from its arcs");
+    x.vertex = h.arrangement.vertices.find_or_add(k.point(uu, k.exit_v));
+    hull::Piece second = pieces[at];
+    second.u0 = uu;
+    second.v0 = x.vertex;
+    pieces[at].u1 = uu;
+    pieces[at].v1 = x.vertex;
+    pieces.insert(pieces.begin() + static_cast<std::ptrdiff_t>(at) + 1, second);
+  }
+  std::sort(crossings.begin(), crossings.end(),
+            [](const SeamCrossing& a, const SeamCrossing& b) { return a.latitude < b.latitude; });
+  h.crossings = crossings;
+}
+
+// The sphere face when its seam crosses the loops: in the (u, v) rectangle the face is bounded by the arcs (run
+// with the caps on their right), the pieces of the seam that lie outside every cap (up the side u = 2 pi, down
+// the side u = 0) and the poles outside every cap (degenerate edges along v = -pi/2 and pi/2). The runs are
+// chained end to start into wires; counterclockwise wires are faces, clockwise ones holes of the face around them.
+// One piece of a sphere face's boundary, run with the face on its left in (u, v).
+
+struct FaceRun {
+  TopoDS_Edge edge;
+  TopAbs_Orientation orientation = TopAbs_FORWARD;
+  Handle(Geom2d_Curve) pcurve, pcurve_reversed;  // the second only for seam pieces
+  double t_start = 0.0, t_end = 0.0;             // the run's parameters on pcurve, in running order
+  bool pole = false;
+  gp_Pnt2d start() const { return pcurve->Value(t_start); }
+  gp_Pnt2d end() const { return pcurve->Value(t_end); }
+};
+
+// The seam's pieces outside every cap (up the side u = 2 pi, down u = 0) and the poles outside every cap
+// (degenerate edges along v = -pi/2 and pi/2) as runs of the sphere face's wires.
+void add_seam_runs(HullCoreBuild& h, const Handle(Geom_SphericalSurface)& sphere, std::vector<FaceRun>& runs) {
+  const SphereFrame& fr = h.frame;
+  const double radius = sphere->Radius();
+  const BRep_Builder& b = h.builder;
+  // Seam stops from the south pole up.
+  auto outside_caps = [&](double lat) {
+    return cap_margin(h.cones, std::cos(lat) * fr.x + std::sin(lat) * fr.z).margin < 0.0;
+  };
+  const Vec3 y = glm::cross(fr.z, fr.x);
+  Handle(Geom_Circle) meridian = new Geom_Circle(gp_Ax2(gp::Origin(), dir(-y), dir(fr.x)), radius);
+  std::vector<std::pair<double, TopoDS_Vertex>> stops;
+  auto pole_vertex = [&](double lat) {
+    TopoDS_Vertex v;
+    b.MakeVertex(v, meridian->Value(lat), kCoreTolerance);
+    return v;
+  };
+  stops.emplace_back(-M_PI / 2, pole_vertex(-M_PI / 2));
+  for (const SeamCrossing& x : h.crossings) stops.emplace_back(x.latitude, h.vertices[x.vertex]);
+  stops.emplace_back(M_PI / 2, pole_vertex(M_PI / 2));
+  for (std::size_t k = 0; k + 1 < stops.size(); ++k) {
+    const double lo = stops[k].first, hi = stops[k + 1].first;
+    if (!outside_caps(0.5 * (lo + hi))) continue;
+    TopoDS_Edge e;
+    b.MakeEdge(e, meridian, kCoreTolerance);
+    b.Add(e, stops[k].second.Oriented(TopAbs_FORWARD));
+    b.Add(e, stops[k + 1].second.Oriented(TopAbs_REVERSED));
+    b.Range(e, lo, hi);
+    FaceRun up;
+    up.edge = e;
+    up.pcurve = new Geom2d_Line(gp_Pnt2d(kTwoPi, 0.0), gp_Dir2d(0, 1));
+    up.pcurve_reversed = new Geom2d_Line(gp_Pnt2d(0.0, 0.0), gp_Dir2d(0, 1));
+    up.t_start = lo;
+    up.t_end = hi;
+    FaceRun down = up;
+    down.orientation = TopAbs_REVERSED;
+    std::swap(down.pcurve, down.pcurve_reversed);
+    std::swap(down.t_start, down.t_end);
+    runs.push_back(up);
+    runs.push_back(down);
+  }
+  for (int side = 0; side < 2; ++side) {  // poles outside every cap: degenerate edges
+    const double lat = side == 0 ? -M_PI / 2 : M_PI / 2;
+    if (!outside_caps(lat)) continue;
+    const TopoDS_Vertex& v = side == 0 ? stops.front().second : stops.back().second;
+    TopoDS_Edge e;
+    b.MakeEdge(e);
+    b.Add(e, v.Oriented(TopAbs_FORWARD));
+    b.Add(e, v.Oriented(TopAbs_REVERSED));
+    b.Degenerated(e, true);
+    FaceRun r;
+    r.edge = e;
+    r.pole = true;
+    r.pcurve = new Geom2d_Line(gp_Pnt2d(0.0, lat), gp_Dir2d(1, 0));
+    r.orientation = side == 0 ? TopAbs_FORWARD : TopAbs_REVERSED;
+    r.t_start = side == 0 ? 0.0 : kTwoPi;
+    r.t_end = side == 0 ? kTwoPi : 0.0;
+    runs.push_back(r);
+  }
+}
+
+void build_crossing_sphere_faces(HullCoreBuild& h, const std::vector<std::size_t>& sphere_arcs) {
+  const SphereFrame& fr = h.frame;
+  const double radius = ball_radius(h.cones[0]);
+  Handle(Geom_SphericalSurface) sphere =
+      new Geom_SphericalSurface(gp_Ax3(gp::Origin(), dir(fr.z), dir(fr.x)), radius);
+  const BRep_Builder& b = h.builder;
+
+  std::vector<FaceRun> runs;
+  for (std::size_t k : sphere_arcs) {
+    CoreEdge& e = h.edges[k];
+    double um, vm, ua, va, ub, vb;
+    ElSLib::Parameters(sphere->Sphere(), e.curve->Value(0.5 * (e.t0 + e.t1)), um, vm);
+    ElSLib::Parameters(sphere->Sphere(), e.curve->Value(e.t0), ua, va);
+    ElSLib::Parameters(sphere->Sphere(), e.curve->Value(e.t1), ub, vb);
+    ua += kTwoPi * std::round((um - ua) / kTwoPi);
+    ub += kTwoPi * std::round((um - ub) / kTwoPi);
+    ArcOnSurface f(e.curve, sphere, e.t0, e.t1, ua, ub);
+    FaceRun r;
+    r.edge = e.edge;
+    r.orientation = TopAbs_REVERSED;
+    r.pcurve = approximate(f, e.t0, e.t1, h.max_error);
+    r.t_start = e.t1;
+    r.t_end = e.t0;
+    runs.push_back(r);
+  }
+  add_seam_runs(h, sphere, runs);
+  // Chain runs end to start into wires, each with its polygon and signed area in (u, v).
+  struct Loop {
+    std::vector<std::size_t> runs;
+    SphereLoop shape;
+  };
+  std::vector<Loop> loops;
+  std::vector<char> used(runs.size(), 0);
+  for (std::size_t first = 0; first < runs.size(); ++first) {
+    if (used[first]) continue;
+    Loop loop;
+    for (std::size_t r = first;;) {
+      used[r] = 1;
+      loop.runs.push_back(r);
+      const gp_Pnt2d end = runs[r].end();
+      if (end.Distance(runs[first].start()) < 1e-6) break;
+      std::size_t next = runs.size();
+      for (std::size_t q = 0; q < runs.size(); ++q)
+        if (!used[q] && runs[q].start().Distance(end) < 1e-6) next = q;
+      if (next == runs.size()) unsupported("the part of the ball between the stumps is not closed across the seam");
+      r = next;
+    }
+    for (std::size_t r : loop.runs)
+      for (int s = 0; s < 32; ++s)
+        loop.shape.polygon.push_back(
+            runs[r].pcurve->Value(runs[r].t_start + (runs[r].t_end - runs[r].t_start) * s / 32.0));
+    for (std::size_t k = 0; k < loop.shape.polygon.size(); ++k) {
+      const gp_Pnt2d &p = loop.shape.polygon[k], &q = loop.shape.polygon[(k + 1) % loop.shape.polygon.size()];
+      loop.shape.area += 0.5 * (p.X() * q.Y() - q.X() * p.Y());
+    }
+    loops.push_back(loop);
+  }
+  auto add_loop = [&](const Loop& loop, TopoDS_Face& face) {
+    TopoDS_Wire w;
+    b.MakeWire(w);
+    for (std::size_t r : loop.runs) {
+      const FaceRun& run = runs[r];
+      if (!run.pcurve_reversed.IsNull()) {
+        // The seam's two (u, v) curves: the first for the edge as it runs forward (up the side u = 2 pi).
+        const bool forward = run.orientation == TopAbs_FORWARD;
+        b.UpdateEdge(run.edge, forward ? run.pcurve : run.pcurve_reversed, forward ? run.pcurve_reversed : run.pcurve,
+                     face, kCoreTolerance);
+      } else {
+        b.UpdateEdge(run.edge, run.pcurve, face, kCoreTolerance);
+      }
+      if (run.pole) b.Range(run.edge, 0.0, kTwoPi);
+      b.Add(w, run.edge.Oriented(run.orientation));
+    }
+    w.Closed(true);
+    b.Add(face, w);
+  };
+  std::vector<const Loop*> outer;
+  for (const Loop& loop : loops) {
+    if (loop.shape.area <= 0) continue;
+    TopoDS_Face face;
+    b.MakeFace(face, sphere, kCoreTolerance);
+    add_loop(loop, face);
+    h.sphere_faces.push_back(face);
+    outer.push_back(&loop);
+  }
+  for (const Loop& loop : loops) {
+    if (loop.shape.area > 0) continue;
+    std::size_t face = outer.size();
+    for (std::size_t k = 0; k < outer.size(); ++k)
+      if (outer[k]->shape.contains(loop.shape.polygon.front())) face = k;
+    if (face == outer.size()) unsupported("a hole in the part of the ball between the stumps lies in no face");
+    add_loop(loop, h.sphere_faces[face]);
+  }
+  for (std::size_t k : sphere_arcs) b.Range(h.edges[k].edge, h.edges[k].t0, h.edges[k].t1);
+}
+
 // The sphere: the region outside all exit caps, bounded by the sphere arcs. Outer loops (counterclockwise in
 // (u, v)) become faces; where the seam and poles lie outside the caps, one more face keeps the sphere's natural
 // boundary. Each hole (clockwise) joins the outer loop around it, or the natural face.
@@ -535,9 +837,11 @@ void build_sphere_faces(HullCoreBuild& h) {
   for (std::size_t k = 0; k < h.edges.size(); ++k)
     if (h.edges[k].on_sphere()) sphere_arcs.push_back(k);
   if (sphere_arcs.empty()) return;
-  const SphereFrame frame = choose_sphere_frame(h.cones);
-  if (!(frame.margin > kSeamMargin))
-    unsupported("the part of the ball between the stumps leaves no room for the sphere's seam");
+  const SphereFrame& frame = h.frame;
+  if (frame.crossing) {
+    build_crossing_sphere_faces(h, sphere_arcs);
+    return;
+  }
   SphereLayout layout;
   layout.z = frame.z;
   layout.x = frame.x;
@@ -605,6 +909,7 @@ std::shared_ptr<const HubCore> build_envelope_core(const std::vector<CoreStump>&
   for (const CoreStump& s : stumps) h.cones.push_back(hull::make_cone(s.direction, s.sin_phi, exit_v));
   for (int i = 0; i < n; ++i) h.v_collar.push_back((collars[i] * ball - h.cones[i].s) / h.cones[i].c);
   h.arrangement = hull::arrange_envelopes(h.cones, h.v_collar);
+  choose_frame_and_split(h);
   collect_core_edges(h);
   make_core_topology(h);
   add_cone_pcurves(h);
