@@ -121,6 +121,16 @@ TEST(HubCore, RandomHullHubs) {
   EXPECT_GE(built, 10);
 }
 
+CoreStump thin_stump(const Vec3& d, double sin_phi, double end_radius) {
+  CoreStump s;
+  s.direction = glm::normalize(d);
+  s.sin_phi = sin_phi;
+  s.end_radius = end_radius;
+  const double c = std::sqrt(1 - sin_phi * sin_phi);
+  s.exit = end_radius * sin_phi + c * std::sqrt(1 - end_radius * end_radius);
+  return s;
+}
+
 TEST(HubCore, TransversalHubs) {
   std::mt19937_64 rng(6);
   std::uniform_real_distribution<double> u01(0.0, 1.0);
@@ -129,13 +139,9 @@ TEST(HubCore, TransversalHubs) {
     std::vector<CoreStump> stumps;
     const int n = 3 + trial % 4;
     for (int k = 0; k < n; ++k) {
-      CoreStump s;
-      s.direction = test::random_unit(rng);
-      s.end_radius = 0.4 + 0.3 * u01(rng);
-      s.sin_phi = 0.1 * (2 * u01(rng) - 1);
-      const double c = std::sqrt(1 - s.sin_phi * s.sin_phi);
-      s.exit = s.end_radius * s.sin_phi + c * std::sqrt(1 - s.end_radius * s.end_radius);
-      stumps.push_back(s);
+      const Vec3 d = test::random_unit(rng);
+      const double end_radius = 0.4 + 0.3 * u01(rng);
+      stumps.push_back(thin_stump(d, 0.1 * (2 * u01(rng) - 1), end_radius));
     }
     try {
       expect_core(stumps, CoreKind::Transversal, "transversal hub " + std::to_string(trial));
@@ -147,15 +153,6 @@ TEST(HubCore, TransversalHubs) {
   EXPECT_GE(built, 3);
 }
 
-CoreStump thin_stump(const Vec3& d, double sin_phi, double end_radius) {
-  CoreStump s;
-  s.direction = glm::normalize(d);
-  s.sin_phi = sin_phi;
-  s.end_radius = end_radius;
-  const double c = std::sqrt(1 - sin_phi * sin_phi);
-  s.exit = end_radius * sin_phi + c * std::sqrt(1 - end_radius * end_radius);
-  return s;
-}
 
 double frustum_volume(const CoreStump& s, double x0, double x1) {
   const double r0 = s.radius_at(x0), r1 = s.radius_at(x1);

@@ -330,8 +330,8 @@ SphereFrame choose_sphere_frame(const std::vector<Cone>& cones) {
 // poles well inside a cap or well outside all, and every crossing clear of the other caps (so not near a vertex
 // of the loops) and transversal. The seam may leave the caps only around its poles: a stretch of it inside
 // the caps between two crossings would lay a hole across the periodic boundary, which OpenCASCADE accepts but
-// STEP readers rebuild as intersecting wires (section 5 of docs/brep.md). The margin is the worst of those clearances (cosine units) and a fifth of the
-// worst crossing's sine of angle.
+// STEP readers rebuild as intersecting wires (section 5 of docs/brep.md). The margin is the worst of those
+// clearances (cosine units) and a fifth of the worst crossing's sine of angle.
 SphereFrame crossing_frame(const std::vector<Cone>& cones, std::vector<SeamCrossing>& crossings) {
   const std::vector<Vec3> poles = pole_candidates(cones);
   SphereFrame best;
@@ -571,7 +571,16 @@ struct SphereLoop {
   std::vector<gp_Pnt2d> polygon;
   double area = 0.0;
   bool contains(const gp_Pnt2d& p) const;
+  void measure();  // the area of the polygon (shoelace)
 };
+
+void SphereLoop::measure() {
+  area = 0.0;
+  for (std::size_t k = 0; k < polygon.size(); ++k) {
+    const gp_Pnt2d &p = polygon[k], &q = polygon[(k + 1) % polygon.size()];
+    area += 0.5 * (p.X() * q.Y() - q.X() * p.Y());
+  }
+}
 
 bool SphereLoop::contains(const gp_Pnt2d& p) const {
   bool in = false;
@@ -607,10 +616,7 @@ std::vector<SphereLoop> sphere_loops(const HullCoreBuild& h, const std::vector<s
       const CoreEdge& e = h.edges[a];
       for (int s = 0; s < 32; ++s) loop.polygon.push_back(pcurve[a]->Value(e.t1 - (e.t1 - e.t0) * s / 32.0));
     }
-    for (std::size_t k = 0; k < loop.polygon.size(); ++k) {
-      const gp_Pnt2d &p = loop.polygon[k], &q = loop.polygon[(k + 1) % loop.polygon.size()];
-      loop.area += 0.5 * (p.X() * q.Y() - q.X() * p.Y());
-    }
+    loop.measure();
     loops.push_back(loop);
   }
   return loops;
@@ -655,12 +661,7 @@ void choose_frame_and_split(HullCoreBuild& h) {
   h.crossings = crossings;
 }
 
-// The sphere face when its seam crosses the loops: in the (u, v) rectangle the face is bounded by the arcs (run
-// with the caps on their right), the pieces of the seam that lie outside every cap (up the side u = 2 pi, down
-// the side u = 0) and the poles outside every cap (degenerate edges along v = -pi/2 and pi/2). The runs are
-// chained end to start into wires; counterclockwise wires are faces, clockwise ones holes of the face around them.
 // One piece of a sphere face's boundary, run with the face on its left in (u, v).
-
 struct FaceRun {
   TopoDS_Edge edge;
   TopAbs_Orientation orientation = TopAbs_FORWARD;
@@ -733,6 +734,10 @@ void add_seam_runs(HullCoreBuild& h, const Handle(Geom_SphericalSurface)& sphere
   }
 }
 
+// The sphere face when its seam crosses the loops: in the (u, v) rectangle the face is bounded by the arcs (run
+// with the caps on their right), the pieces of the seam that lie outside every cap (up the side u = 2 pi, down
+// the side u = 0) and the poles outside every cap (degenerate edges along v = -pi/2 and pi/2). The runs are
+// chained end to start into wires; counterclockwise wires are faces, clockwise ones holes of the face around them.
 void build_crossing_sphere_faces(HullCoreBuild& h, const std::vector<std::size_t>& sphere_arcs) {
   const SphereFrame& fr = h.frame;
   const double radius = ball_radius(h.cones[0]);
@@ -784,10 +789,7 @@ void build_crossing_sphere_faces(HullCoreBuild& h, const std::vector<std::size_t
       for (int s = 0; s < 32; ++s)
         loop.shape.polygon.push_back(
             runs[r].pcurve->Value(runs[r].t_start + (runs[r].t_end - runs[r].t_start) * s / 32.0));
-    for (std::size_t k = 0; k < loop.shape.polygon.size(); ++k) {
-      const gp_Pnt2d &p = loop.shape.polygon[k], &q = loop.shape.polygon[(k + 1) % loop.shape.polygon.size()];
-      loop.shape.area += 0.5 * (p.X() * q.Y() - q.X() * p.Y());
-    }
+    loop.shape.measure();
     loops.push_back(loop);
   }
   auto add_loop = [&](const Loop& loop, TopoDS_Face& face) {
@@ -904,9 +906,8 @@ std::shared_ptr<const HubCore> build_envelope_core(const std::vector<CoreStump>&
                                                    const std::vector<double>& collars) {
   const int n = static_cast<int>(stumps.size());
   const double rho = stumps[0].end_radius, ball = 1.0 / rho;
-  const double exit_v = kind == CoreKind::Hull ? 0.0 : std::sqrt((ball - 1.0) * (ball + 1.0));
   HullCoreBuild h;
-  for (const CoreStump& s : stumps) h.cones.push_back(hull::make_cone(s.direction, s.sin_phi, exit_v));
+  h.cones = envelope_cones(stumps);
   for (int i = 0; i < n; ++i) h.v_collar.push_back((collars[i] * ball - h.cones[i].s) / h.cones[i].c);
   h.arrangement = hull::arrange_envelopes(h.cones, h.v_collar);
   choose_frame_and_split(h);
@@ -1203,14 +1204,13 @@ std::shared_ptr<const HubCore> build_hub_core(const std::vector<CoreStump>& stum
   // The Fuse with the collars asked for (the beams may not fit the others), else with collars whose angular
   // cones stay apart (its collar disks then surely come out untouched); the core reports the ones it used in
   // collar_position.
-  const std::vector<double> apart = place_collars(stumps, kind, kMaxCollarPosition);
-  if (apart != collars) {
-    try {
-      return build_transversal_core(stumps, collars);
-    } catch (const InvalidInput&) {
-    }
+  try {
+    return build_transversal_core(stumps, collars);
+  } catch (const InvalidInput&) {
+    const std::vector<double> apart = place_collars(stumps, kind, kMaxCollarPosition);
+    if (apart == collars) throw;
+    return build_transversal_core(stumps, apart);
   }
-  return build_transversal_core(stumps, apart);
 }
 
 }  // namespace steady

@@ -27,10 +27,9 @@ Cone make_cone(const CoreStump& st) { return hull::make_cone(st.direction, st.si
 // unit sphere, the ball's sphere at exit_v). Empty when another stump dominates some generator again farther out
 // (stumps meeting away from the hub: the conservative collars then decide) or a collar would come near the apex.
 std::vector<double> envelope_collars(const std::vector<CoreStump>& stumps) {
-  const double rho = stumps[0].end_radius, ball = 1.0 / rho;
-  const double exit_v = std::sqrt((ball - 1.0) * (ball + 1.0));
-  std::vector<Cone> cones;
-  for (const CoreStump& st : stumps) cones.push_back(hull::make_cone(st.direction, st.sin_phi, exit_v));
+  const double rho = stumps[0].end_radius;
+  const std::vector<Cone> cones = envelope_cones(stumps);
+  const double exit_v = cones[0].exit_v;
   std::vector<double> collars;
   for (int i = 0; i < static_cast<int>(cones.size()); ++i) {
     std::vector<double> us = hull::breakpoint_candidates(cones, i);
@@ -50,6 +49,14 @@ std::vector<double> envelope_collars(const std::vector<CoreStump>& stumps) {
 }
 
 }  // namespace
+
+std::vector<hull::Cone> envelope_cones(const std::vector<CoreStump>& stumps) {
+  const double ball = 1.0 / stumps[0].end_radius;
+  const double exit_v = std::sqrt((ball - 1.0) * (ball + 1.0));
+  std::vector<Cone> cones;
+  for (const CoreStump& st : stumps) cones.push_back(hull::make_cone(st.direction, st.sin_phi, exit_v));
+  return cones;
+}
 
 bool share_end_radius(const std::vector<CoreStump>& stumps) {
   if (stumps.empty()) return false;

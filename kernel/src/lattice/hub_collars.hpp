@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "steady/core/vec.hpp"
+#include "lattice/cone_envelope.hpp"
 #include "lattice/hub_catalog.hpp"
 
 namespace steady {
@@ -30,6 +31,11 @@ std::vector<double> place_collars(const std::vector<CoreStump>& stumps, CoreKind
 // Whether every stump has the same end radius rho (0 < rho <= 1): then all cones are tangent to one sphere around
 // the ball's center, and the B-rep builds the core from their envelope arrangement without a Boolean.
 bool share_end_radius(const std::vector<CoreStump>& stumps);
+
+// The stumps' cones for the envelope arrangement when they share their end radius rho: scaled by 1 / rho, so
+// that they are tangent to the unit sphere and the ball's sphere (radius 1 / rho) meets them at
+// exit_v = sqrt(1 / rho^2 - 1) (0 in the hull model).
+std::vector<hull::Cone> envelope_cones(const std::vector<CoreStump>& stumps);
 
 // The collars a B-rep core uses. Stumps of one end radius (the hull model, or explicit radii equal at the node): each collar just beyond the envelope where
 // the other stumps meet its stump (plus clearance), when no stump meets another again farther out; much closer
