@@ -36,6 +36,7 @@ py::dict properties_dict(const steady::LatticeProperties& p) {
   d["clean"] = p.clean_verified && p.overlap_count == 0;
   d["overlap_count"] = p.overlap_count;
   d["overlap_description"] = p.overlap_description;
+  d["moved_cuts"] = p.moved_cuts;
   d["union_clusters"] = p.union_clusters;
   d["union_hubs"] = p.union_hubs;
   d["union_error"] = p.union_error;
@@ -86,7 +87,9 @@ a dict with 'volume', 'area' (outer surface), 'centroid' (3,), 'inertia' (3x3 ab
 'overlapping_hub_shapes': hubs whose stumps overlap, integrated to `tolerance`).
 When hubs of different nodes overlap (the lattice is not clean) they are reported ('clean' False,
 'overlap_count' pairs, 'overlap_description' naming the first) and the properties come from the exact union
-of the overlapping hubs (OpenCASCADE Fuse per cluster, 'union_clusters', 'union_hubs', 'union_error'); with
+of the overlapping hubs: beams' cuts moved past crowded hubs' collars when that makes the hubs disjoint
+('moved_cuts', no Boolean), else an OpenCASCADE Fuse per cluster ('union_clusters', 'union_hubs',
+'union_error'); with
 union_overlaps=False such a lattice raises ValueError instead. check_clean=False skips the check and returns
 the sum over hubs. Multiply volume and inertia by a density for mass properties.)doc")
       .def(

@@ -3,9 +3,11 @@
 The sweep itself is in crowded_sweep.py (also a script); the short one runs here, the long one (at least 500
 cases) with STEADY_LONG_TESTS=1 (scripts/test.sh --long).
 """
+import math
 import os
 import re
 
+import numpy as np
 import pytest
 
 import crowded_sweep
@@ -65,3 +67,43 @@ def test_a_beam_too_short_for_its_hubs_names_the_radius_that_fits():
     # The factor it names (a little less, for the rounding of the message) builds.
     thinner = crowded_sweep.lattice("octet", 0.35, 0.8 * factor * 0.99, "screw", (2, 2, 2))
     assert sl.brep_properties(thinner.brep())["valid"]
+
+
+def monte_carlo_volume(lat, n=400_000, seed=11):
+    """Volume by sampling the kernel's exact point membership over the lattice's box, and its standard error."""
+    rng = np.random.default_rng(seed)
+    centers, radii = lat.balls()
+    lo, hi = (centers - radii[:, None]).min(0), (centers + radii[:, None]).max(0)
+    points = lo + rng.random((n, 3)) * (hi - lo)
+    f = np.asarray(lat.contains(points), bool).mean()
+    box = float(np.prod(hi - lo))
+    return f * box, box * math.sqrt(f * (1 - f) / n)
+
+
+def test_crowded_hubs_whose_stumps_meet_past_the_mid_plane_have_the_exact_volume():
+    """FCC, node 0.45, beam/node 0.64, twisted taper: the stumps of crowded hubs meet beyond their beams'
+    mid-planes, so hubs of neighbouring nodes overlap. properties() used to fuse those hubs with OpenCASCADE,
+    which silently lost volume (5.58436 against the B-rep's 5.59323, 1.6e-3); it now moves the cuts past the
+    crowded hubs' collars, as the B-rep does, and sums exact hub properties without a Boolean."""
+    lat = crowded_sweep.lattice("FCC", 0.45, 0.64, "twisted taper", (2, 2, 2))
+    p = lat.properties()
+    assert not p["clean"] and p["moved_cuts"] > 0 and p["union_clusters"] == 0, p
+    brep = sl.brep_properties(lat.brep())
+    assert brep["valid"] and brep["solids"] == 1
+    assert abs(p["volume"] / brep["volume"] - 1.0) < 1e-7
+    mc, sigma = monte_carlo_volume(lat)
+    assert abs(p["volume"] - mc) < 4 * sigma
+
+
+def test_a_fuse_that_loses_volume_is_an_error_never_a_silent_figure():
+    """FCC in the hull model, bent: node balls meet beams of other nodes, so the overlapping hubs must be fused.
+    OpenCASCADE's Fuse of one of them returns a valid solid 9 % short of the hub's exact volume; properties()
+    refuses, naming the hub, instead of reporting a volume that the Monte Carlo estimate contradicts."""
+    lat = crowded_sweep.lattice("FCC", 0.45, None, "bend", (2, 2, 2))
+    try:
+        p = lat.properties()
+    except (ValueError, RuntimeError) as error:
+        assert re.search(r"hub of \(\d+,\d+,\d+,\d+\)", str(error)), error
+        return
+    mc, sigma = monte_carlo_volume(lat)
+    assert abs(p["volume"] - mc) < 4 * sigma

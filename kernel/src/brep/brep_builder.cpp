@@ -975,9 +975,8 @@ void place_cuts_between_collars(const FlatLattice& f, std::vector<BeamFrustum>& 
     if (!fr.exists || (std::isnan(start[2 * e]) && std::isnan(start[2 * e + 1]))) continue;
     const double from = std::isnan(start[2 * e]) ? fr.exit_a : start[2 * e];
     const double to = fr.cone.length - (std::isnan(start[2 * e + 1]) ? fr.exit_b : start[2 * e + 1]);
-    const double margin = 0.1 * (to - from), x = fr.cut_position();
-    if (!(from < to) || (x > from + margin && x < to - margin)) continue;
-    fr.cut_fraction = (0.5 * (from + to) - fr.exit_a) / fr.length();
+    const double x = fr.cut_position(), moved = cut_between_collars(from, to, x);
+    if (moved != x) fr.cut_fraction = (moved - fr.exit_a) / fr.length();
   }
 }
 

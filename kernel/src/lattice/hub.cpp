@@ -55,6 +55,11 @@ std::vector<std::pair<BeamId, bool>> incident_beams(const Lattice& lattice, cons
   return out;
 }
 
+void move_cut(Stump& stump, double position) {
+  stump.cut_position = position;
+  stump.cut = {stump.cone.a + position * stump.cone.axis, stump.cone.axis, stump.cone.radius_at(position)};
+}
+
 Hub hub(const Lattice& lattice, const NodeId& node) {
   if (!lattice.node_exists(node)) fail_input("hub", "the node does not exist");
   Hub h;
@@ -69,11 +74,10 @@ Hub hub(const Lattice& lattice, const NodeId& node) {
     s.at_start = at_start;
     s.cone = at_start ? beam_cone(g.start, g.end) : beam_cone(g.end, g.start);
     s.exit_position = cone_exit_position(s.cone, true, h.ball.radius);
-    s.cut_position = 0.5 * s.cone.length;
     const Vec3& n = s.cone.axis;
     s.on_node = {s.cone.a + s.exit_position * n, n,
                  std::sqrt(std::max(0.0, h.ball.radius * h.ball.radius - s.exit_position * s.exit_position))};
-    s.cut = {s.cone.a + s.cut_position * n, n, s.cone.radius_at(s.cut_position)};
+    move_cut(s, 0.5 * s.cone.length);
     h.stumps.push_back(s);
   }
   return h;

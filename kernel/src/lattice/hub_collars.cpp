@@ -116,6 +116,37 @@ std::vector<CoreStump> core_stumps(const std::vector<SphereCap>& caps, const std
 
 CoreKind core_kind(int hub_kind) { return hub_kind == 1 ? CoreKind::Hull : CoreKind::Transversal; }
 
+std::vector<CoreStump> core_stumps(const Hub& hub) {
+  const double R = hub.ball.radius;
+  std::vector<CoreStump> stumps;
+  for (const Stump& s : hub.stumps) {
+    CoreStump st;
+    st.direction = s.cone.axis;
+    st.exit = s.exit_position / R;
+    st.sin_phi = s.cone.sin_phi;  // the cone is oriented from the hub's node
+    st.end_radius = s.cone.ra / R;
+    stumps.push_back(st);
+  }
+  return stumps;
+}
+
+CoreKind core_kind(const Hub& hub) {
+  bool all_tangent = true, all_transversal = true;
+  for (const Stump& s : hub.stumps) {
+    all_tangent = all_tangent && s.cone.ra >= hub.ball.radius * (1.0 - 1e-12);
+    all_transversal = all_transversal && s.cone.ra < hub.ball.radius * (1.0 - 1e-9);
+  }
+  if (!all_tangent && !all_transversal)
+    fail_input("hub", "the hub mixes beams tangent to its ball (hull model) with thinner beams");
+  return all_tangent ? CoreKind::Hull : CoreKind::Transversal;
+}
+
+double cut_between_collars(double from, double to, double cut) {
+  const double margin = 0.1 * (to - from);
+  if (!(from < to) || (cut > from + margin && cut < to - margin)) return cut;
+  return 0.5 * (from + to);
+}
+
 double CoreStump::radius_at(double x) const {
   const double c = std::sqrt((1.0 - sin_phi) * (1.0 + sin_phi));
   return (end_radius - x * sin_phi) / c;

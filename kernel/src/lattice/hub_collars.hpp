@@ -8,6 +8,7 @@
 #include "steady/core/vec.hpp"
 #include "lattice/cone_envelope.hpp"
 #include "lattice/hub_catalog.hpp"
+#include "steady/lattice/hub.hpp"
 
 namespace steady {
 
@@ -48,6 +49,18 @@ std::vector<double> core_collars(const std::vector<CoreStump>& stumps, CoreKind 
 // hub_geometry), and which kind of core its HubGeometry::kind asks for.
 std::vector<CoreStump> core_stumps(const std::vector<SphereCap>& caps, const std::vector<double>& extras);
 CoreKind core_kind(int hub_kind);
+
+// A hub's stumps in its canonical frame (unit ball at the origin), from its geometry in the world, and the kind of
+// core its beams ask for (Hull when all are tangent to the ball; InvalidInput, field "hub", when tangent and
+// thinner beams mix).
+std::vector<CoreStump> core_stumps(const Hub& hub);
+CoreKind core_kind(const Hub& hub);
+
+// Where a beam's cut goes between two hubs whose stumps run free beyond axial positions `from` and `to` (both
+// measured like `cut`, along the beam): the cut stays where it is when it lies well inside the gap (a tenth of it
+// from either end) or when there is no gap, else it moves to the gap's middle. The B-rep (cuts between crowded
+// cores) and the properties (hubs whose stumps meet beyond the mid-plane) place cuts by this one rule.
+double cut_between_collars(double from, double to, double cut);
 
 // Collars are sought up to this many ball radii from the center (beyond, the beam's cut decides).
 constexpr double kMaxCollarPosition = 50.0;

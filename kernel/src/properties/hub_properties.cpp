@@ -86,7 +86,7 @@ StumpGeometry geometry_of(double R, const HubStump& s) {
   const double r = s.radius;
   g.exit_x = r * g.cone.sin_phi + g.cone.cos_phi * std::sqrt(std::max(0.0, (R - r) * (R + r)));
   g.exit_y = g.cone.radius_at(r, g.exit_x);
-  g.cut_x = 0.5 * s.length;
+  g.cut_x = s.cut_position();
   g.cut_y = g.cone.radius_at(r, g.cut_x);
   g.tangent_x = r * g.cone.sin_phi;
   g.half_angle = std::atan2(g.exit_y, g.exit_x);
@@ -424,7 +424,8 @@ HubShape hub_shape(const Hub& hub) {
   HubShape h;
   h.center = hub.ball.center;
   h.radius = hub.ball.radius;
-  for (const Stump& s : hub.stumps) h.stumps.push_back({s.cone.axis, s.cone.length, s.cone.ra, s.cone.rb});
+  for (const Stump& s : hub.stumps)
+    h.stumps.push_back({s.cone.axis, s.cone.length, s.cone.ra, s.cone.rb, s.cut_position});
   return h;
 }
 
@@ -480,12 +481,16 @@ void validate_hub_shape(const HubShape& hub) {
       fail_input(f + ".radius", "exceeds the node radius: the beam would stick out of its node");
     if (!(std::abs(s.radius - s.other_radius) < s.length))
       fail_input(f, "one end ball of the beam contains the other: the beam has no cone");
-    if (hub.radius > 0.5 * s.length * (1.0 + kMidPlaneSlack))
-      fail_input(f, "the node ball (radius " + std::to_string(hub.radius) + ") crosses the beam's mid-plane (at " +
-                        std::to_string(0.5 * s.length) + "): the lattice is not clean there");
+    if (!(s.cut >= 0.0 && s.cut < s.length)) fail_input(f + ".cut", "must lie between the beam's two nodes");
+    // The cut may lie inside the ball (a crowded hub's collar) as long as its rim lies outside, beyond the exit.
+    const double cut = s.cut_position();
+    const StumpGeometry g = geometry_of(hub.radius, s);
+    if (!(g.cut_x > g.exit_x * (1.0 + kMidPlaneSlack)))
+      fail_input(f, "the node ball (radius " + std::to_string(hub.radius) + ") holds the beam's whole cut (at " +
+                        std::to_string(cut) + "): the lattice is not clean there");
     const Cone cone = cone_of(s);
-    if (s.length + s.other_radius * cone.sin_phi < 0.5 * s.length)
-      fail_input(f, "the far end ball of the beam crosses the beam's mid-plane: the lattice is not clean there");
+    if (s.length + s.other_radius * cone.sin_phi < cut)
+      fail_input(f, "the far end ball of the beam crosses the beam's cut: the lattice is not clean there");
   }
 }
 

@@ -318,6 +318,7 @@ LatticeProperties lattice_properties(const Lattice& lattice, const LatticeProper
     out.hub_shapes = sums.hub_shapes;
     out.overlapping_hub_shapes = sums.overlapping_hub_shapes;
     out.overlap_count = report.overlap_count;
+    out.moved_cuts = u.moved_cuts;
     out.union_clusters = u.clusters;
     out.union_hubs = u.hubs;
     out.union_error = u.volume_error;

@@ -41,12 +41,15 @@ struct HubPieces {
   Vec3 center{0.0};
   double reach = 0.0;  // bounding sphere about the node center
   std::vector<Piece> pieces;
+  // Beams (and whether the node is their start) whose cut was moved into the ball (to a crowded hub's collar): the
+  // hub ends at the cut disk, and the ball's cap beyond it belongs to the beam's far stump. (A ball reaching past
+  // its beam's mid-plane still overlaps the far hub: the lattice is not clean there.)
+  std::vector<std::pair<BeamId, bool>> cut_inside_ball;
 };
 
-HubPieces hub_pieces(const Lattice& lattice, const NodeId& id) {
-  const Hub h = hub(lattice, id);
+HubPieces hub_pieces(const Hub& h) {
   HubPieces out;
-  out.id = id;
+  out.id = h.node;
   out.center = h.ball.center;
   out.reach = h.ball.radius;
   Piece ball;
@@ -70,9 +73,13 @@ HubPieces hub_pieces(const Lattice& lattice, const NodeId& id) {
                               std::sqrt(glm::dot(p.m - p.bound_center, p.m - p.bound_center) + p.rho * p.rho));
     out.reach = std::max(out.reach, glm::length(p.bound_center - out.center) + p.bound_radius);
     out.pieces.push_back(p);
+    const bool moved = std::abs(s.cut_position - 0.5 * s.cone.length) > 1e-12 * s.cone.length;
+    if (moved && s.cut_position < h.ball.radius) out.cut_inside_ball.emplace_back(s.beam, s.at_start);
   }
   return out;
 }
+
+HubPieces hub_pieces(const Lattice& lattice, const NodeId& id) { return hub_pieces(hub(lattice, id)); }
 
 // Farthest point of the shrunk piece along d.
 Vec3 support(const Piece& p, double shrink, const Vec3& d) {
@@ -103,16 +110,44 @@ std::string piece_name(const Piece& p) {
 }
 
 // Overlap between two hubs: the first overlapping pair of pieces, or empty.
+// Whether q is the far stump of a beam of `h` whose cut lies inside h's ball: the two meet only in the ball's cap
+// beyond the cut, which is q's, not the hub's.
+bool far_stump_past_ball(const HubPieces& h, const Piece& q) {
+  return q.stump && std::find(h.cut_inside_ball.begin(), h.cut_inside_ball.end(),
+                              std::make_pair(q.beam, !q.at_start)) != h.cut_inside_ball.end();
+}
+
 bool hubs_overlap(const HubPieces& x, const HubPieces& y, std::string* detail) {
   if (glm::length(x.center - y.center) >= x.reach + y.reach) return false;
   for (const Piece& p : x.pieces)
     for (const Piece& q : y.pieces)
-      if (pieces_overlap(p, q)) {
+      if (!(!p.stump && far_stump_past_ball(x, q)) && !(!q.stump && far_stump_past_ball(y, p)) &&
+          pieces_overlap(p, q)) {
         if (detail) *detail = piece_name(p) + " / " + piece_name(q);
         return true;
       }
   return false;
 }
+
+}  // namespace
+
+bool hubs_overlap(const Hub& a, const Hub& b, std::string* detail) {
+  return hubs_overlap(hub_pieces(a), hub_pieces(b), detail);
+}
+
+bool cut_disk_meets_other_stumps(const Hub& h, std::size_t stump) {
+  const HubPieces pieces = hub_pieces(h);
+  Piece disk = pieces.pieces[stump + 1];  // the hull of a point at the disk's center and the disk: the disk
+  disk.a = disk.m;
+  disk.r = 0.0;
+  disk.bound_center = disk.m;
+  disk.bound_radius = disk.rho;
+  for (std::size_t k = 1; k < pieces.pieces.size(); ++k)
+    if (k != stump + 1 && pieces_overlap(disk, pieces.pieces[k])) return true;
+  return false;
+}
+
+namespace {
 
 struct Collector {
   std::mutex lock;

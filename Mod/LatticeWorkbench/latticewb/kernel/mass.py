@@ -30,8 +30,11 @@ def properties(obj):
         overlaps = p["overlap_count"]
         if overlaps:
             # Not clean: say so, and which hubs; the kernel replaced their sum by their exact union.
-            method += ", plus the exact union of %d overlapping hubs in %d cluster(s)" % (
-                p["union_hubs"], p["union_clusters"])
+            if p["moved_cuts"]:
+                method += ", with %d beam cuts moved past crowded hubs so that hubs do not overlap" % p["moved_cuts"]
+            else:
+                method += ", plus the exact union of %d overlapping hubs in %d cluster(s)" % (
+                    p["union_hubs"], p["union_clusters"])
             FreeCAD.Console.PrintWarning("%s is not clean: %s\n" % (obj.Label, p["overlap_description"]))
     else:
         shape = obj.Shape

@@ -61,6 +61,10 @@ struct Stump {
   double cut_position = 0.0;     // axial position of the cut (half the beam length)
 };
 
+// Moves the stump's cut disk to axial position `position` from the node (the beam's mid-plane by default): a
+// crowded hub whose stumps meet beyond the mid-plane keeps all of that meeting when its cuts move past it.
+void move_cut(Stump& stump, double position);
+
 struct Hub {
   NodeId node;
   std::int64_t ball_index = -1;

@@ -32,6 +32,11 @@ struct HubStump {
   double length = 0.0;       // distance between the two node centers
   double radius = 0.0;       // the beam's end radius at this node
   double other_radius = 0.0; // the beam's end radius at the other node
+  // Axial position of the cut disk from the node center; 0: the mid-plane. It may lie inside the node ball as long
+  // as its rim lies outside (a crowded hub's collar): the hub then ends at the disk, without the ball's cap beyond
+  // it, which belongs to the beam's other half.
+  double cut = 0.0;
+  double cut_position() const { return cut > 0.0 ? cut : 0.5 * length; }
 };
 
 struct HubShape {
@@ -61,7 +66,7 @@ struct StumpContribution {
 StumpContribution stump_contribution_alone(double node_radius, const HubStump& stump);
 
 // Throws InvalidInput naming the stump when the hub is not made of a ball and frustum stumps: the node
-// ball reaches past a beam's mid-plane (R > length/2), or a beam's far ball reaches into the near half.
+// ball holds a beam's whole cut disk (its rim inside the ball), or a beam's far ball reaches into the near part.
 // Both happen only in non-clean lattices.
 void validate_hub_shape(const HubShape& hub);
 

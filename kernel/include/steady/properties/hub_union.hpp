@@ -2,14 +2,19 @@
 // The exact union of overlapping hubs, for the integral properties of a lattice that is not clean.
 //
 // When hubs of different nodes overlap, the lattice is no longer the assembly of its hubs: the sum over hubs
-// counts the shared regions more than once. The overlapping hubs fall into clusters (connected components of
-// the "overlaps" relation); each cluster's union is computed exactly with OpenCASCADE (one Fuse of its balls
-// and stump frustums, all exact quadrics and planes, integrated by BRepGProp to 1e-10 relative), and the
-// properties become
-//     sum over all hubs  +  sum over clusters of ( union of the cluster's hubs  -  sum of its hubs ).
-// Hubs outside every cluster have disjoint interiors from everything else, so this is exact. Areas exclude the
-// cut disks (between a hub and its neighbour across a beam's mid-plane: inside the lattice). The Fuse result is
-// checked (valid solid, volume between the largest hub's and the sum) before it is trusted.
+// counts the shared regions more than once. Two ways to correct it, tried in this order:
+// 1. Moved cuts, no Boolean. Most overlaps come from crowded hubs whose stumps meet beyond their beams'
+//    mid-planes. Moving those beams' cuts past the hubs' collars (the B-rep's rule) makes all hubs disjoint
+//    again, checked piece by piece; the correction is the moved hubs' exact properties (hub_properties) minus
+//    their mid-plane ones.
+// 2. Otherwise the overlapping hubs fall into clusters (connected components of the "overlaps" relation); each
+//    cluster's union is computed with OpenCASCADE (one Fuse of its balls and stump frustums, integrated by
+//    BRepGProp to 1e-10 relative), and the properties become
+//        sum over all hubs  +  sum over clusters of ( union of the cluster's hubs  -  sum of its hubs ).
+//    Hubs outside every cluster have disjoint interiors from everything else, so this is exact when the Fuse
+//    is. The Fuse result is checked (valid solid, volume between the largest hub's and the sum) before it is
+//    trusted.
+// Areas exclude the cut disks (between a hub and its neighbour across a beam's cut: inside the lattice).
 #include <cstdint>
 #include <vector>
 
@@ -27,7 +32,9 @@ constexpr std::int64_t kMaxUnionHubs = 2000;
 
 struct HubUnionCorrection {
   MassMoments moments;            // to add to the sum over hubs; moments about `reference`
-  std::int64_t clusters = 0;      // clusters of overlapping hubs
+  std::int64_t moved_cuts = 0;    // beams whose cut moved past a crowded hub's collars (then no Boolean)
+  std::int64_t moved_cut_hubs = 0;  // hubs with a moved cut
+  std::int64_t clusters = 0;      // clusters of overlapping hubs fused (0 when moved cuts were enough)
   std::int64_t hubs = 0;          // hubs in them
   double volume_error = 0.0;      // BRepGProp's error estimate, relative to the clusters' volume
 };

@@ -49,9 +49,11 @@ struct LatticeProperties {
   std::int64_t overlapping_hub_shapes = 0;
   // The clean check's verdict: verified false when the lattice was too large to check (or not asked).
   bool clean_verified = false;
-  // Overlapping hubs of different nodes (pairs found), and their exact union: clusters and hubs fused, and
-  // the integration's error estimate relative to the clusters' volume. overlap_description names the first few.
+  // Overlapping hubs of different nodes (pairs found), and their exact union: beams whose cut moved past a
+  // crowded hub's collars when that was enough (no Boolean), else clusters and hubs fused and the integration's
+  // error estimate relative to the clusters' volume. overlap_description names the first few.
   std::int64_t overlap_count = 0;
+  std::int64_t moved_cuts = 0;
   std::int64_t union_clusters = 0;
   std::int64_t union_hubs = 0;
   double union_error = 0.0;

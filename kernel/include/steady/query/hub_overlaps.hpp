@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "steady/lattice/lattice.hpp"
+#include "steady/lattice/hub.hpp"
 #include "steady/core/progress.hpp"
 
 namespace steady {
@@ -49,6 +50,14 @@ enum class HubOverlapCheckMethod {
 
 HubOverlapReport check_hub_overlaps(const Lattice& lattice, std::size_t max_reports = 100, Progress& progress = no_progress(),
                         HubOverlapCheckMethod method = HubOverlapCheckMethod::Automatic);
+
+// Whether two hubs of different nodes overlap (the test above, on hubs as given: their cuts may have moved), and
+// which pieces ("stump of beams[p] / ball") in `detail`.
+bool hubs_overlap(const Hub& a, const Hub& b, std::string* detail = nullptr);
+
+// Whether the cut disk of stump `stump` meets another stump of its hub. A cut moved into the ball must not: the hub
+// would keep what the other stump holds beyond the disk, which the beam's far half holds too.
+bool cut_disk_meets_other_stumps(const Hub& h, std::size_t stump);
 
 // Brute force over every pair of hubs and pieces: for the tests.
 HubOverlapReport check_hub_overlaps_brute_force(const Lattice& lattice, std::size_t max_reports = 100);
