@@ -30,33 +30,6 @@
 namespace steady {
 namespace {
 
-// The core closed by a disk at every collar.
-TopoDS_Shape closed_core(const HubCore& core) {
-  BRep_Builder b;
-  TopoDS_Shell shell;
-  b.MakeShell(shell);
-  for (TopExp_Explorer x(core.faces, TopAbs_FACE); x.More(); x.Next()) b.Add(shell, x.Current());
-  for (const TopoDS_Edge& collar : core.collars) {
-    Standard_Real first, last;
-    Handle(Geom_Circle) c = Handle(Geom_Circle)::DownCast(BRep_Tool::Curve(collar, first, last));
-    const gp_Ax2& ax = c->Position();
-    TopoDS_Face disk;
-    b.MakeFace(disk, new Geom_Plane(gp_Ax3(ax.Location(), ax.Direction(), ax.XDirection())), 1e-7);
-    b.UpdateEdge(collar, new Geom2d_Circle(gp_Ax2d(gp_Pnt2d(0, 0), gp_Dir2d(1, 0)), c->Radius()), disk, 1e-7);
-    b.Range(collar, first, last);
-    TopoDS_Wire w;
-    b.MakeWire(w);
-    b.Add(w, collar.Oriented(TopAbs_FORWARD));
-    b.Add(disk, w);
-    b.Add(shell, disk);
-  }
-  shell.Closed(true);
-  TopoDS_Solid solid;
-  b.MakeSolid(solid);
-  b.Add(solid, shell);
-  return solid;
-}
-
 CoreStump hull_stump(const Vec3& d, double sin_phi) {
   CoreStump s;
   s.direction = glm::normalize(d);

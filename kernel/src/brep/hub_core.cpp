@@ -4,6 +4,8 @@
 #include <AdvApprox_EvaluatorFunction.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepCheck_Analyzer.hxx>
+#include <BRepGProp.hxx>
+#include <GProp_GProps.hxx>
 #include <BRepBuilderAPI_Transform.hxx>
 #include <BRepLib_MakeFace.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
@@ -16,6 +18,7 @@
 #include <ElSLib.hxx>
 #include <Geom2d_BSplineCurve.hxx>
 #include <Geom2d_Curve.hxx>
+#include <Geom2d_Circle.hxx>
 #include <Geom2d_Line.hxx>
 #include <Geom_Circle.hxx>
 #include <Geom_ConicalSurface.hxx>
@@ -34,6 +37,8 @@
 #include <TopTools_ListOfShape.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Face.hxx>
+#include <TopoDS_Shell.hxx>
+#include <TopoDS_Solid.hxx>
 #include <TopoDS_Vertex.hxx>
 #include <TopoDS_Wire.hxx>
 #include <gp_Cone.hxx>
@@ -55,6 +60,7 @@
 #include "lattice/cone_envelope.hpp"
 #include "steady/lattice/convex_distance.hpp"
 #include "steady/core/errors.hpp"
+#include "steady/properties/hub_properties.hpp"
 #include "brep/sphere_layout.hpp"
 
 namespace steady {
@@ -1186,9 +1192,100 @@ std::shared_ptr<const HubCore> build_transversal_core(const std::vector<CoreStum
 }
 
 
-std::shared_ptr<const HubCore> build_hub_core(const std::vector<CoreStump>& stumps, CoreKind kind,
-                                              const std::vector<double>& collars) {
-  if (stumps.empty()) unsupported("a hub core needs stumps");
+TopoDS_Solid closed_core(const HubCore& core) {
+  BRep_Builder b;
+  TopoDS_Shell shell;
+  b.MakeShell(shell);
+  for (TopExp_Explorer x(core.faces, TopAbs_FACE); x.More(); x.Next()) b.Add(shell, x.Current());
+  for (const TopoDS_Edge& collar : core.collars) {
+    Standard_Real first, last;
+    Handle(Geom_Circle) c = Handle(Geom_Circle)::DownCast(BRep_Tool::Curve(collar, first, last));
+    const gp_Ax2& ax = c->Position();
+    TopoDS_Face disk;
+    b.MakeFace(disk, new Geom_Plane(gp_Ax3(ax.Location(), ax.Direction(), ax.XDirection())), 1e-7);
+    b.UpdateEdge(collar, new Geom2d_Circle(gp_Ax2d(gp_Pnt2d(0, 0), gp_Dir2d(1, 0)), c->Radius()), disk, 1e-7);
+    b.Range(collar, first, last);
+    TopoDS_Wire w;
+    b.MakeWire(w);
+    b.Add(w, collar.Oriented(TopAbs_FORWARD));
+    b.Add(disk, w);
+    b.Add(shell, disk);
+  }
+  shell.Closed(true);
+  TopoDS_Solid solid;
+  b.MakeSolid(solid);
+  b.Add(solid, shell);
+  return solid;
+}
+
+namespace {
+
+// The hub up to the core's collars as a HubShape of hub_properties (unit ball at the origin, each cut at its
+// collar). hub_properties wants each stump's far node: any beam with the stump's cone whose far ball stays beyond
+// the collar gives the same stump, and the one chosen lies between those bounds.
+HubShape core_hub_shape(const std::vector<CoreStump>& stumps, const std::vector<double>& collars) {
+  HubShape shape;
+  shape.radius = 1.0;
+  for (std::size_t i = 0; i < stumps.size(); ++i) {
+    const CoreStump& c = stumps[i];
+    const double s = c.sin_phi, r = c.end_radius, x = collars[i];
+    const double shortest = (x - r * s) / ((1.0 - s) * (1.0 + s));  // the far ball's tangent circle at the collar
+    const double longest = s > 0.0 ? r / s : 4.0 * std::max(shortest, x);  // the far ball shrinks to the apex
+    HubStump h;
+    h.axis = c.direction;
+    h.radius = r;
+    h.length = 0.5 * (std::max(shortest, x) + longest);
+    h.other_radius = r - h.length * s;
+    h.cut = x;
+    shape.stumps.push_back(h);
+  }
+  return shape;
+}
+
+// The volume the core encloses with its collar disks (OpenCASCADE's integral over the closed solid; an open shell's
+// faces alone do not give it), and the exact volume of its hub (hub_properties). Tight collars (core_collars) may
+// lie inside the ball, where another stump can reach through a collar disk's interior (the closed core ends at the
+// disk, hub_properties would keep what that stump holds): both sides are then taken to place_collars' collars, the
+// built one by adding each stump's frustum between the two collars (beyond its tight collar no stump meets
+// another, so the frustums add exactly).
+std::pair<double, double> core_volumes(const HubCore& core, const std::vector<CoreStump>& stumps) {
+  GProp_GProps closed;
+  BRepGProp::VolumeProperties(closed_core(core), closed, 1e-9, Standard_True);
+  double built = closed.Mass();
+  std::vector<double> cuts = core.collar_position;
+  std::vector<double> apart = cuts;
+  try {
+    apart = place_collars(stumps, core.kind, kMaxCollarPosition);
+  } catch (const InvalidInput&) {  // no collars apart: the tight ones are measured as they are
+  }
+  for (std::size_t i = 0; i < stumps.size(); ++i) {
+    const double x0 = cuts[i], x1 = apart[i];
+    if (!(x1 > x0)) continue;
+    const double r0 = stumps[i].radius_at(x0), r1 = stumps[i].radius_at(x1);
+    built += M_PI * (x1 - x0) * (r0 * r0 + r0 * r1 + r1 * r1) / 3.0;
+    cuts[i] = x1;
+  }
+  return {built, hub_properties(core_hub_shape(stumps, cuts)).moments.volume};
+}
+
+constexpr double kCoreVolumeTolerance = 1e-6;  // relative; OpenCASCADE integrates the faces to 1e-9
+
+bool core_volume_matches(const HubCore& core, const std::vector<CoreStump>& stumps) {
+  const auto [built, exact] = core_volumes(core, stumps);
+  return std::abs(built - exact) <= kCoreVolumeTolerance * exact;
+}
+
+void check_core_volume(const HubCore& core, const std::vector<CoreStump>& stumps) {
+  const auto [built, exact] = core_volumes(core, stumps);
+  if (std::abs(built - exact) <= kCoreVolumeTolerance * exact) return;
+  std::ostringstream os;
+  os << "the core built for a crowded hub of " << stumps.size() << " beams (" << (core.fused ? "Fuse" : "envelope")
+     << ") encloses volume " << built << " where the hub's exact volume is " << exact;
+  fail_input("hub", os.str());
+}
+
+std::shared_ptr<const HubCore> build_unchecked_core(const std::vector<CoreStump>& stumps, CoreKind kind,
+                                                    const std::vector<double>& collars) {
   if (kind == CoreKind::Hull) return build_envelope_core(stumps, kind, collars);
   // Transversal stumps of one end radius: the same exact construction, no Boolean; else (or where a stump is
   // swallowed up to its collar, or the seam finds no room) the Fuse.
@@ -1197,7 +1294,7 @@ std::shared_ptr<const HubCore> build_hub_core(const std::vector<CoreStump>& stum
   if (share_end_radius(stumps)) {
     try {
       std::shared_ptr<const HubCore> core = build_envelope_core(stumps, kind, collars);
-      if (BRepCheck_Analyzer(core->faces).IsValid()) return core;
+      if (BRepCheck_Analyzer(core->faces).IsValid() && core_volume_matches(*core, stumps)) return core;
     } catch (const InvalidInput&) {
     }
   }
@@ -1211,6 +1308,16 @@ std::shared_ptr<const HubCore> build_hub_core(const std::vector<CoreStump>& stum
     if (apart == collars) throw;
     return build_transversal_core(stumps, apart);
   }
+}
+
+}  // namespace
+
+std::shared_ptr<const HubCore> build_hub_core(const std::vector<CoreStump>& stumps, CoreKind kind,
+                                              const std::vector<double>& collars) {
+  if (stumps.empty()) unsupported("a hub core needs stumps");
+  std::shared_ptr<const HubCore> core = build_unchecked_core(stumps, kind, collars);
+  check_core_volume(*core, stumps);
+  return core;
 }
 
 }  // namespace steady
