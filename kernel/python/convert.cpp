@@ -9,9 +9,13 @@ using steady::Vec3;
 
 void value_error(const std::string& name, const std::string& what) { throw py::value_error(name + ": " + what); }
 
+void require_stats_target(const py::object& target) {
+  if (!target.is_none() && !py::isinstance<py::dict>(target)) value_error("stats", "expected a dict to fill, or None");
+}
+
 void fill_stats(const py::object& target, const py::dict& values) {
   if (target.is_none()) return;
-  if (!py::isinstance<py::dict>(target)) value_error("stats", "expected a dict to fill, or None");
+  require_stats_target(target);
   py::dict d = target.cast<py::dict>();
   for (auto item : values) d[item.first] = item.second;
 }

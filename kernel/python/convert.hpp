@@ -34,6 +34,8 @@ std::vector<steady::NodeId> to_omitted(py::handle value);
 
 // Copies `values` into the caller's stats dict (a Python argument `stats`: None, or a dict to fill).
 void fill_stats(const py::object& target, const py::dict& values);
+// Refuses a stats argument that is neither None nor a dict before any work starts (not after minutes of it).
+void require_stats_target(const py::object& target);
 
 // A kernel progress callback from a Python callable `report(fraction)` (None: no reporting). The callable runs
 // with the GIL held, on the calling thread only; returning False cancels (steadylattice.Cancelled is raised).

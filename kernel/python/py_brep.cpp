@@ -139,8 +139,7 @@ void bind_brep(py::module_& m) {
         steady::LatticePartRequest request = part_request(body, policy, skin, dangling);
         set_log(request.trim, log);
         request.trim.dump_directory = dump_dir;
-        if (!stats.is_none() && !py::isinstance<py::dict>(stats))
-          value_error("stats", "expected a dict to fill, or None");
+        require_stats_target(stats);
         steady::TrimStats trim;
         std::string text = run_with_progress(progress, [&](steady::Progress& p) {
           // The part's volume in the stats takes as long as the build of a crowded lattice: only when asked.

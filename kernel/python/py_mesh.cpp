@@ -116,6 +116,7 @@ void bind_mesh(py::module_& m) {
       "to_mesh",
       [](const Lattice& lat, double tolerance, const py::object& body, const py::object& inner,
          const py::object& progress, const py::object& stats) {
+        require_stats_target(stats);
         py::dict s;
         const steady::TriangleMesh mesh = lattice_mesh_of(lat, tolerance, body, inner, progress, s);
         fill_stats(stats, s);
@@ -135,6 +136,7 @@ void bind_mesh(py::module_& m) {
       "write_stl",
       [](const Lattice& lat, const std::string& path, double tolerance, const std::string& name,
          const py::object& body, const py::object& inner, const py::object& progress, const py::object& stats) {
+        require_stats_target(stats);
         if (!body.is_none()) {
           py::dict s;
           const steady::TriangleMesh mesh = lattice_mesh_of(lat, tolerance, body, inner, progress, s);
@@ -173,6 +175,7 @@ void bind_mesh(py::module_& m) {
       [](const Lattice& lat, const std::string& path, const py::object& tolerance, bool beam_lattice,
          const std::string& name, const std::string& unit, const py::object& clipping, const py::object& body,
          const py::object& inner, const py::object& progress, const py::object& stats) {
+        require_stats_target(stats);
         if (beam_lattice && !body.is_none())
           value_error("body", "a beam lattice is not trimmed: give the body's mesh as clipping=");
         steady::BeamLatticeOptions options;

@@ -47,6 +47,7 @@ void bind_slices(py::module_& m) {
       "write_slices",
       [](const Lattice& lat, const std::string& directory, double layer_height, double pixel_size, bool svg,
          const py::object& progress, const py::object& stats) {
+        require_stats_target(stats);
         steady::SliceOptions options;
         options.layer_height = layer_height;
         options.pixel_size = pixel_size;

@@ -117,3 +117,27 @@ def test_bad_tolerance_path_unit_and_cancel_leave_nothing_behind(tmp_path):
     with pytest.raises(sl.Cancelled):
         dense_octet(ratio=0.6, counts=(6, 6, 6)).write_stl(path, 0.002, progress=lambda fraction: False)
     assert os.listdir(tmp_path) == []
+
+
+def test_a_stats_argument_that_is_not_a_dict_is_refused_before_any_work(tmp_path):
+    """A wrong stats argument used to be found only when the stats were filled, after the whole mesh (minutes at
+    10^6 beams) had been built and written; now every output refuses it before starting: no progress reported,
+    no file written."""
+    lat = cubic_lattice()
+    calls = []
+
+    def progress(fraction):
+        calls.append(fraction)
+        return True
+
+    attempts = [
+        lambda: lat.to_mesh(0.01, progress=progress, stats=[]),
+        lambda: lat.write_stl(str(tmp_path / "a.stl"), 0.01, progress=progress, stats="x"),
+        lambda: lat.write_3mf(str(tmp_path / "a.3mf"), 0.01, progress=progress, stats=1),
+        lambda: lat.write_3mf(str(tmp_path / "b.3mf"), beam_lattice=True, progress=progress, stats=()),
+        lambda: lat.write_slices(str(tmp_path), 0.1, 0.05, progress=progress, stats=[]),
+    ]
+    for attempt in attempts:
+        with pytest.raises(ValueError, match="stats: expected a dict"):
+            attempt()
+    assert calls == [] and os.listdir(tmp_path) == []
