@@ -14,6 +14,7 @@
 #include <TopExp.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 
+#include <ios>
 #include <sstream>
 
 #include "brep/occ_progress.hpp"
@@ -32,11 +33,20 @@ std::string brep_to_text(const TopoDS_Shape& shape, Progress& progress) {
 TopoDS_Shape brep_from_text(const std::string& text, const std::string& field) {
   TopoDS_Shape shape;
   std::istringstream is(text);
+  // OpenCASCADE's reader loops on `is >> value` until it reads a terminator (an edge's list of representations
+  // ends with 0). Past the end of a truncated text the stream has failed, a failed extraction leaves the value as
+  // it was, and such a loop never ends (issue 16, repro reliability/01: 100 % CPU forever). So every failed
+  // extraction throws: a text that ends early or holds a malformed number is refused where the reader stops.
+  is.exceptions(std::ios::failbit | std::ios::badbit);
   const BRep_Builder builder;
   try {
     BRepTools::Read(shape, is, builder);
   } catch (const Standard_Failure& e) {
     fail_input(field, std::string("is not BREP text (") + e.GetMessageString() + ")");
+  } catch (const std::ios_base::failure&) {
+    fail_input(field, "is not BREP text: it ends early or holds a malformed value (at character " +
+                          std::to_string(static_cast<long long>(is.rdbuf()->pubseekoff(0, std::ios::cur, std::ios::in))) +
+                          " of " + std::to_string(text.size()) + ")");
   }
   if (shape.IsNull()) fail_input(field, "is not BREP text, or holds no shape");
   return shape;
