@@ -1,6 +1,8 @@
 // Fuzz target: a STEP file read back (read_step_parts, what steadylattice.read_step calls), and each part it gives
 // taken as a body (SolidBody) and checked as in fuzz_body_brep. Any bytes either read or are refused with
 // InvalidInput.
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
 #include <Standard_Failure.hxx>
 #include <unistd.h>
 
@@ -14,6 +16,12 @@
 #include "body_checks.hpp"
 #include "fuzz_common.hpp"
 #include "steady/brep/step_assembly.hpp"
+
+// OpenCASCADE's reader prints its transfer statistics for every file: silenced, they cost most of the run.
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  Message::DefaultMessenger()->ChangePrinters().Clear();
+  return 0;
+}
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace steady;
