@@ -4,7 +4,6 @@
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <Standard_Failure.hxx>
-#include <sanitizer/lsan_interface.h>
 #include <unistd.h>
 
 #include <cstddef>
@@ -35,18 +34,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::vector<StepPart> parts;
   fuzz::refusals_only("read_step_parts", [&] {
     try {
-      // OpenCASCADE's STEP session allocates its static tables on first use (Interface_Static parameters,
-      // IFSelect_Editor, TPrsStd_DriverTable) and never frees them. Debian's OpenCASCADE has no frame pointers, so
-      // LeakSanitizer's stacks stop at its allocator and no suppression can name those tables: leak checking is
-      // paused for the reader alone (third-party code; the checks on the parts below run with it).
-      __lsan_disable();
       parts = read_step_parts(path);
-      __lsan_enable();
     } catch (const Standard_Failure& e) {
       fuzz::finding(std::string("OpenCASCADE exception escaped the STEP reader: ") + e.GetMessageString());
-    } catch (...) {
-      __lsan_enable();
-      throw;
     }
   });
   std::remove(path.c_str());
