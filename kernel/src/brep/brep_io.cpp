@@ -99,8 +99,8 @@ const char* broken_point(const Handle(BRep_PointRepresentation)& p) {
 }  // namespace
 
 void require_complete_geometry(const TopoDS_Shape& shape, const std::string& field) {
-  auto refuse = [&](const char* kind, int index, const std::string& what) {
-    fail_input(field, std::string(kind) + " #" + std::to_string(index + 1) + " has " + what);
+  auto refuse = [&](const char* kind, int number, const std::string& what) {  // numbered from 1, as in the maps
+    fail_input(field, std::string(kind) + " #" + std::to_string(number) + " has " + what);
   };
   TopTools_IndexedMapOfShape faces, edges, vertices;
   TopExp::MapShapes(shape, TopAbs_FACE, faces);
@@ -108,25 +108,25 @@ void require_complete_geometry(const TopoDS_Shape& shape, const std::string& fie
   TopExp::MapShapes(shape, TopAbs_VERTEX, vertices);
   for (int i = 1; i <= faces.Extent(); ++i) {
     const Handle(BRep_TFace) f = Handle(BRep_TFace)::DownCast(faces(i).TShape());
-    if (f.IsNull() || f->Surface().IsNull()) refuse("face", i - 1, "no surface (its record did not read)");
+    if (f.IsNull() || f->Surface().IsNull()) refuse("face", i, "no surface (its record did not read)");
   }
   for (int i = 1; i <= edges.Extent(); ++i) {
     const Handle(BRep_TEdge) e = Handle(BRep_TEdge)::DownCast(edges(i).TShape());
-    if (e.IsNull()) refuse("edge", i - 1, "no geometry");
+    if (e.IsNull()) refuse("edge", i, "no geometry");
     bool has_curve = false;
     for (BRep_ListIteratorOfListOfCurveRepresentation it(e->Curves()); it.More(); it.Next()) {
-      if (const char* what = broken_representation(it.Value())) refuse("edge", i - 1, what);
+      if (const char* what = broken_representation(it.Value())) refuse("edge", i, what);
       // A 3D curve representation may hold no curve (degenerated edges' do); what the checker needs is a curve.
       has_curve |= it.Value()->IsCurve3D() && !it.Value()->Curve3D().IsNull();
     }
     // The reader drops the 3D curve of an edge whose curve record did not read; BRepCheck_Edge then crashes.
-    if (!has_curve && !e->Degenerated()) refuse("edge", i - 1, "no 3D curve (its record did not read)");
+    if (!has_curve && !e->Degenerated()) refuse("edge", i, "no 3D curve (its record did not read)");
   }
   for (int i = 1; i <= vertices.Extent(); ++i) {
     const Handle(BRep_TVertex) v = Handle(BRep_TVertex)::DownCast(vertices(i).TShape());
-    if (v.IsNull() || !finite(v->Pnt())) refuse("vertex", i - 1, "no finite point");
+    if (v.IsNull() || !finite(v->Pnt())) refuse("vertex", i, "no finite point");
     for (BRep_ListIteratorOfListOfPointRepresentation it(v->Points()); it.More(); it.Next())
-      if (const char* what = broken_point(it.Value())) refuse("vertex", i - 1, what);
+      if (const char* what = broken_point(it.Value())) refuse("vertex", i, what);
   }
 }
 
