@@ -25,6 +25,9 @@ PACKAGES=(
   libxml2-utils
   # a real FreeCAD window without a display; peak-memory measurement
   xvfb xauth time
+  # the reliability build (scripts/test.sh --sanitizers, docs/reliability.md): clang with its AddressSanitizer,
+  # UndefinedBehaviorSanitizer and libFuzzer runtimes, and llvm-symbolizer for readable reports
+  clang-14 libclang-rt-14-dev llvm-14
 )
 
 missing=()

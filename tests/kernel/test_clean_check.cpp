@@ -101,7 +101,7 @@ TEST(BroadPhase, GridFindsExactlyTheOverlappingPairs) {
       const Vec3 c = random_vec(rng, 10.0);
       // Mostly small boxes, a few huge ones and some flat ones.
       const double s = (i % 97 == 0) ? 8.0 : 0.2 + 0.8 * u01(rng);
-      Vec3 e(s * u01(rng), s * u01(rng), s * u01(rng));
+      Vec3 e{s * u01(rng), s * u01(rng), s * u01(rng)};  // braces: drawn left to right by every compiler
       if (i % 13 == 0) e.z = 0.0;
       boxes.push_back({c - e, c + e});
     }
@@ -160,7 +160,7 @@ TEST(CleanCheck, MatchesBruteForceOnRandomLattices) {
   std::uniform_real_distribution<double> u01(0.0, 1.0);
   int clean = 0, dirty = 0;
   std::set<CleanIssueKind> kinds;
-  for (int trial = 0; trial < 30; ++trial) {
+  for (int trial = 0; trial < 60; ++trial) {
     // Node radii from thin to fat: fat nodes make balls, caps and beams collide.
     const double radius = 0.1 + 0.4 * u01(rng);
     Lattice lat = test::strut_lattice(rng, test::StepKind(trial % 4), {3, 3, 2}, radius);

@@ -135,7 +135,9 @@ TEST(HubUnion, EqualCrossingBeamsGiveTheRightAnswerOrAnError) {
     auto inside = [&](const Vec3& x) {
       for (const Ball& b : balls)
         if (glm::length(x - b.center) <= b.radius) return true;
-      for (const auto& [a, b] : beams) {  // hull of two balls: min over t of |x - c(t)| - r(t) <= 0 (convex in t)
+      for (const auto& ends : beams) {  // hull of two balls: min over t of |x - c(t)| - r(t) <= 0 (convex in t)
+        // Named references, not a structured binding: C++17 lets no lambda capture those (clang refuses).
+        const Ball &a = ends.first, &b = ends.second;
         double lo = 0.0, hi = 1.0;
         auto f = [&](double t) { return glm::length(x - (a.center + t * (b.center - a.center))) - (a.radius + t * (b.radius - a.radius)); };
         for (int it = 0; it < 60; ++it) {

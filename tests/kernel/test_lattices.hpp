@@ -43,18 +43,24 @@ inline Lattice strut_lattice(std::mt19937_64& rng, StepKind kind, Counts counts,
         steps[a] = Similarity::screw(angle, e[a], random_vec(rng, 0.5), 1.0);
         break;
       }
-      case StepKind::General:
-        steps[a] = Similarity::swirl(0.04 * (2 * u01(rng) - 1), random_unit(rng), random_vec(rng, 1.0),
-                                     std::exp(0.02 * (2 * u01(rng) - 1))) *
-                   Similarity::translation(e[a]);
+      case StepKind::General: {
+        // One draw per statement: the order in which a call's arguments are evaluated is up to the compiler
+        // (GCC and clang differ), and the sample must be the same whatever builds the tests.
+        const double angle = 0.04 * (2 * u01(rng) - 1);
+        const Vec3 axis = random_unit(rng), center = random_vec(rng, 1.0);
+        const double scale = std::exp(0.02 * (2 * u01(rng) - 1));
+        steps[a] = Similarity::swirl(angle, axis, center, scale) * Similarity::translation(e[a]);
         break;
+      }
     }
   }
   d.u = {steps[0]};
   d.v = {steps[1]};
   d.w = {steps[2]};
-  d.placement = Similarity::rotation(u01(rng) * 3.0, random_unit(rng), random_vec(rng, 2.0)) *
-                Similarity::dilation(0.5 + 2.0 * u01(rng), Vec3(0.0));
+  const double turn = u01(rng) * 3.0;
+  const Vec3 turn_axis = random_unit(rng), turn_point = random_vec(rng, 2.0);
+  const double scale = 0.5 + 2.0 * u01(rng);
+  d.placement = Similarity::rotation(turn, turn_axis, turn_point) * Similarity::dilation(scale, Vec3(0.0));
   return Lattice(std::move(d));
 }
 

@@ -10,10 +10,20 @@
 #include <BRepGProp.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
+#include <BRep_CurveRepresentation.hxx>
+#include <BRep_GCurve.hxx>
+#include <BRep_ListIteratorOfListOfCurveRepresentation.hxx>
+#include <BRep_ListIteratorOfListOfPointRepresentation.hxx>
+#include <BRep_PointRepresentation.hxx>
+#include <BRep_TEdge.hxx>
+#include <BRep_TFace.hxx>
+#include <BRep_TVertex.hxx>
 #include <GProp_GProps.hxx>
 #include <TopExp.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 
+#include <cmath>
+#include <ios>
 #include <sstream>
 
 #include "brep/occ_progress.hpp"
@@ -32,14 +42,92 @@ std::string brep_to_text(const TopoDS_Shape& shape, Progress& progress) {
 TopoDS_Shape brep_from_text(const std::string& text, const std::string& field) {
   TopoDS_Shape shape;
   std::istringstream is(text);
+  // OpenCASCADE's reader loops on `is >> value` until it reads a terminator (an edge's list of representations
+  // ends with 0). Past the end of a truncated text the stream has failed, a failed extraction leaves the value as
+  // it was, and such a loop never ends (issue 16, repro reliability/01: 100 % CPU forever). So every failed
+  // extraction throws: a text that ends early or holds a malformed number is refused where the reader stops.
+  is.exceptions(std::ios::failbit | std::ios::badbit);
   const BRep_Builder builder;
   try {
     BRepTools::Read(shape, is, builder);
   } catch (const Standard_Failure& e) {
     fail_input(field, std::string("is not BREP text (") + e.GetMessageString() + ")");
+  } catch (const std::ios_base::failure&) {
+    fail_input(field, "is not BREP text: it ends early or holds a malformed value (at character " +
+                          std::to_string(static_cast<long long>(is.rdbuf()->pubseekoff(0, std::ios::cur, std::ios::in))) +
+                          " of " + std::to_string(text.size()) + ")");
   }
   if (shape.IsNull()) fail_input(field, "is not BREP text, or holds no shape");
+  require_complete_geometry(shape, field);
   return shape;
+}
+
+namespace {
+
+bool finite(const gp_Pnt& p) { return std::isfinite(p.X()) && std::isfinite(p.Y()) && std::isfinite(p.Z()); }
+
+// What is wrong with one of an edge's representations (nullptr when nothing): each must hold the curves, surfaces
+// and polygons it names (a record naming a curve or surface that did not read holds a null one).
+const char* broken_representation(const Handle(BRep_CurveRepresentation)& r) {
+  if (r.IsNull()) return "an empty representation";
+  if (r->IsCurveOnSurface()) {
+    if (r->Surface().IsNull()) return "a curve on a surface that did not read";
+    if (r->PCurve().IsNull() || (r->IsCurveOnClosedSurface() && r->PCurve2().IsNull()))
+      return "a curve on surface (pcurve) that did not read";
+  }
+  if (r->IsRegularity() && (r->Surface().IsNull() || r->Surface2().IsNull())) return "a continuity between surfaces that did not read";
+  if (r->IsPolygon3D() && r->Polygon3D().IsNull()) return "a 3D polygon that did not read";
+  if (r->IsPolygonOnTriangulation() && (r->PolygonOnTriangulation().IsNull() || r->Triangulation().IsNull()))
+    return "a polygon on a triangulation that did not read";
+  if (r->IsPolygonOnSurface() && (r->Polygon().IsNull() || r->Surface().IsNull())) return "a polygon on a surface that did not read";
+  if (r->IsCurve3D() || r->IsCurveOnSurface()) {
+    const Handle(BRep_GCurve) g = Handle(BRep_GCurve)::DownCast(r);
+    if (!g.IsNull() && !(std::isfinite(g->First()) && std::isfinite(g->Last()))) return "a curve of infinite range";
+  }
+  return nullptr;
+}
+
+const char* broken_point(const Handle(BRep_PointRepresentation)& p) {
+  if (p.IsNull()) return "an empty point representation";
+  if (p->IsPointOnCurve() && p->Curve().IsNull()) return "a point on a curve that did not read";
+  if (p->IsPointOnCurveOnSurface() && (p->PCurve().IsNull() || p->Surface().IsNull()))
+    return "a point on a curve on surface that did not read";
+  if (p->IsPointOnSurface() && p->Surface().IsNull()) return "a point on a surface that did not read";
+  return nullptr;
+}
+
+}  // namespace
+
+void require_complete_geometry(const TopoDS_Shape& shape, const std::string& field) {
+  auto refuse = [&](const char* kind, int number, const std::string& what) {  // numbered from 1, as in the maps
+    fail_input(field, std::string(kind) + " #" + std::to_string(number) + " has " + what);
+  };
+  TopTools_IndexedMapOfShape faces, edges, vertices;
+  TopExp::MapShapes(shape, TopAbs_FACE, faces);
+  TopExp::MapShapes(shape, TopAbs_EDGE, edges);
+  TopExp::MapShapes(shape, TopAbs_VERTEX, vertices);
+  for (int i = 1; i <= faces.Extent(); ++i) {
+    const Handle(BRep_TFace) f = Handle(BRep_TFace)::DownCast(faces(i).TShape());
+    if (f.IsNull() || f->Surface().IsNull()) refuse("face", i, "no surface (its record did not read)");
+  }
+  for (int i = 1; i <= edges.Extent(); ++i) {
+    const Handle(BRep_TEdge) e = Handle(BRep_TEdge)::DownCast(edges(i).TShape());
+    if (e.IsNull()) refuse("edge", i, "no geometry");
+    bool has_curve = false;
+    for (BRep_ListIteratorOfListOfCurveRepresentation it(e->Curves()); it.More(); it.Next()) {
+      if (const char* what = broken_representation(it.Value())) refuse("edge", i, what);
+      // A 3D curve representation may hold no curve (degenerated edges' do); what the checker needs is a curve.
+      has_curve |= it.Value()->IsCurve3D() && !it.Value()->Curve3D().IsNull();
+    }
+    // The reader drops the 3D curve of an edge whose curve record did not read; BRepCheck_Edge then crashes.
+    if (!has_curve && !e->Degenerated()) refuse("edge", i, "no 3D curve (its record did not read)");
+  }
+  for (int i = 1; i <= vertices.Extent(); ++i) {
+    const Handle(BRep_TVertex) v = Handle(BRep_TVertex)::DownCast(vertices(i).TShape());
+    if (v.IsNull() || !finite(v->Pnt())) refuse("vertex", i, "no finite point");
+    for (BRep_ListIteratorOfListOfPointRepresentation it(v->Points()); it.More(); it.Next())
+      if (const char* what = broken_point(it.Value())) refuse("vertex", i, what);
+  }
 }
 
 // The kind of a face's surface, for error messages.

@@ -19,6 +19,7 @@
 #include <TopoDS.hxx>
 #include <TopoDS_Vertex.hxx>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -85,6 +86,17 @@ SolidBody::SolidBody(const TopoDS_Shape& shape, const std::string& field) {
     fail_input(field, "is too small: its bounding box diagonal is " + (std::ostringstream() << size()).str() +
                           ", below " + (std::ostringstream() << kMinimumBodySize).str() + " (1e4 times OpenCASCADE's tolerance of 1e-7): scale "
                           "the model up, e.g. work in micrometres");
+  // A tolerance is a zone where OpenCASCADE counts points as on the boundary: beyond the distance bounds' slack it
+  // would classify points clear of the triangulated surface as inside (found by tests/fuzz/fuzz_body_brep: a vertex
+  // tolerance of 1 on a box of 4 put points 0.7 outside its corner inside).
+  const double tolerance = std::max({BRep_Tool::MaxTolerance(solid_, TopAbs_VERTEX),
+                                     BRep_Tool::MaxTolerance(solid_, TopAbs_EDGE),
+                                     BRep_Tool::MaxTolerance(solid_, TopAbs_FACE)});
+  if (!(tolerance <= kMaxBodyRelativeTolerance * size()))
+    fail_input(field, "has a tolerance of " + (std::ostringstream() << tolerance).str() + ", more than " +
+                          (std::ostringstream() << kMaxBodyRelativeTolerance).str() +
+                          " of its size: its geometry is too imprecise to trim against (repair the shape, e.g. "
+                          "FreeCAD's Part > Check geometry, then Refine shape)");
   const double deflection = kBodyMeshRelativeDeflection * size();
   BRepMesh_IncrementalMesh mesh(solid_, deflection, Standard_False, 0.3, Standard_True);
   slack_ = kBodyMeshDeflectionFactor * deflection;

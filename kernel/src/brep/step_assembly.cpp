@@ -1,6 +1,13 @@
 #include "steady/brep/step_assembly.hpp"
 
+#include "steady/brep/brep_io.hpp"
+
 #include <IFSelect_ReturnStatus.hxx>
+#include <Interface_Check.hxx>
+#include <Interface_CheckIterator.hxx>
+#include <Interface_CheckTool.hxx>
+#include <Interface_InterfaceModel.hxx>
+#include <XSControl_WorkSession.hxx>
 #include <Interface_Static.hxx>
 #include <Quantity_Color.hxx>
 #include <STEPCAFControl_Reader.hxx>
@@ -18,6 +25,7 @@
 
 #include <cstdio>
 #include <mutex>
+#include <sstream>
 
 #include "brep/occ_progress.hpp"
 #include "steady/core/errors.hpp"
@@ -167,6 +175,22 @@ std::vector<StepPart> read_step_parts(const std::string& path) {
     XCAFApp_Application::GetApplication()->Close(doc);
     fail_input("path", "cannot read '" + path + "' as STEP");
   }
+  // Entities whose parameters failed to load (a reference to an entity of the wrong type or none, a malformed
+  // value) are kept by the reader with null fields, and its translator dereferences them: a crash, not an error
+  // (found by tests/fuzz/fuzz_body_step). Such a file is refused before anything is translated.
+  const Handle(Interface_InterfaceModel) model = reader.ChangeReader().WS()->Model();
+  const Interface_CheckIterator load_fails = Interface_CheckTool(model).AnalyseCheckList();
+  if (!load_fails.IsEmpty(Standard_True) || model->GlobalCheck()->HasFailed()) {
+    XCAFApp_Application::GetApplication()->Close(doc);
+    std::ostringstream first;
+    if (model->GlobalCheck()->HasFailed()) first << model->GlobalCheck()->CFail(1);
+    for (load_fails.Start(); load_fails.More(); load_fails.Next())
+      if (first.tellp() == 0 && load_fails.Value()->HasFailed()) {
+        first << "entity #" << load_fails.Number() << ": " << load_fails.Value()->CFail(1);
+        break;
+      }
+    fail_input("path", "'" + path + "' is not well-formed STEP (" + first.str() + ")");
+  }
   reader.Transfer(doc);
   Handle(XCAFDoc_ShapeTool) shapes = XCAFDoc_DocumentTool::ShapeTool(doc->Main());
   Handle(XCAFDoc_ColorTool) colors = XCAFDoc_DocumentTool::ColorTool(doc->Main());
@@ -175,6 +199,7 @@ std::vector<StepPart> read_step_parts(const std::string& path) {
   std::vector<StepPart> out;
   for (int i = 1; i <= roots.Length(); ++i) collect(shapes, colors, roots.Value(i), TopLoc_Location(), "", out);
   XCAFApp_Application::GetApplication()->Close(doc);
+  for (const StepPart& part : out) require_complete_geometry(part.shape, "path");
   return out;
 }
 

@@ -15,6 +15,11 @@ namespace steady {
 std::string brep_to_text(const TopoDS_Shape& shape, Progress& progress = no_progress());
 // Reads BREP text; throws InvalidInput naming `field` when the text does not parse or holds no shape.
 TopoDS_Shape brep_from_text(const std::string& text, const std::string& field);
+// Throws InvalidInput naming `field` when a face has no surface, an edge (not degenerated) no 3D curve, a curve or
+// point representation misses the curve, surface or polygon it names, or a vertex has no finite point.
+// OpenCASCADE's readers (BREP and STEP) leave such holes where a record does not parse, and say nothing; its
+// checker (BRepCheck) and algorithms then dereference them and crash (found by tests/fuzz, docs/reliability.md).
+void require_complete_geometry(const TopoDS_Shape& shape, const std::string& field);
 
 bool is_valid(const TopoDS_Shape& shape);
 // Empty when valid; otherwise the faulty sub-shapes (type and index) with their BRepCheck statuses, at most

@@ -21,6 +21,11 @@ constexpr double kBodyMeshRelativeDeflection = 1e-3;
 // one deflection of the surface; the factor covers its angular and edge-discretization slack).
 constexpr double kBodyMeshDeflectionFactor = 4.0;
 
+// The largest tolerance (of a vertex, edge or face) a body may carry, relative to its size: within its tolerance
+// zone OpenCASCADE classifies points as on the boundary, and that zone must stay inside the slack of the distance
+// bounds (kBodyMeshDeflectionFactor deflections, 4e-3 of the size) so that the exact tests decide there.
+constexpr double kMaxBodyRelativeTolerance = 1e-3;
+
 class SolidBody {
  public:
   // Validates `shape` (exactly one solid, valid, closed, positive volume); InvalidInput naming `field` otherwise.
