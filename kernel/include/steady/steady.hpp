@@ -15,6 +15,9 @@
 #include "steady/core/tolerance.hpp"
 #include "steady/core/vec.hpp"
 
+#include "steady/cots/becots_map.hpp"
+#include "steady/cots/cots_map.hpp"
+
 #include "steady/lattice/beam_frustum.hpp"
 #include "steady/lattice/broad_phase.hpp"
 #include "steady/lattice/convex_distance.hpp"
