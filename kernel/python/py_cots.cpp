@@ -178,8 +178,8 @@ parallelograms are the affine map.)doc")
 void bind_becots_map(py::module_& m) {
   py::class_<BecotsMap>(m, "BecotsMap", R"doc(
 The BeCOTS map: M(x,y) = F + m_u^x m_v^y Rot_T(x w_u + y w_v)(a - F), with M(0,0) = a, M(0,1) = b, M(1,1) = c,
-M(1,0) = d (3D corners); its range lies on the cone of apex F and axis T (a cylinder when |ab| = |cd| and
-|ad| = |bc|, a plane for coplanar corners). raised(z) / projected(), bent(beta) / unbent().)doc")
+M(1,0) = d (3D corners); its range lies on the cone of apex F and axis T (a plane for coplanar corners).
+raised(z) / projected(), bent(beta) / unbent().)doc")
       .def(py::init([](py::handle a, py::handle b, py::handle c, py::handle d, py::handle branches) {
              const auto k = to_branches(branches);
              return BecotsMap(to_vec3(a, "a"), to_vec3(b, "b"), to_vec3(c, "c"), to_vec3(d, "d"), k.first, k.second);
@@ -235,7 +235,6 @@ M(1,0) = d (3D corners); its range lies on the cone of apex F and axis T (a cyli
       .def_property_readonly("log_u", &BecotsMap::log_u)
       .def_property_readonly("log_v", &BecotsMap::log_v)
       .def_property_readonly("is_flat", &BecotsMap::is_flat)
-      .def_property_readonly("is_cylinder", &BecotsMap::is_cylinder)
       .def_property_readonly("shadow", &BecotsMap::shadow, "The planar map of the shadows across the axis.");
 }
 

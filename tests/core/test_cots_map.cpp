@@ -102,7 +102,7 @@ TEST(CotsMap, P1ValuesTranSimilarityAndBorders) {
   const Complex f = cx(*m.fixed_point());
   const double x = 0.2, y = 0.3, xp = 0.5, yp = -0.25, t = 0.7;
   const Complex ts = f + std::exp(t * (xp * m.log_u() + yp * m.log_v())) * (cx(m.map(x, y)) - f);
-  EXPECT_LT(std::abs(cx(m.map(x + t * xp, y + t * yp)) - ts), 1e-15);
+  EXPECT_LT(std::abs(cx(m.map(x + t * xp, y + t * yp)) - ts), 2e-15);
   // ... and through the similarity objects: U^x' V^y' moves M(x, y) to M(x + x', y + y').
   EXPECT_LT(dist(m.field(xp, yp).apply(m.map(x, y)), m.map(x + xp, y + yp)), 1e-15);
   EXPECT_LT(dist(m.u_similarity().apply(kA), kD), 1e-15);
@@ -252,10 +252,10 @@ TEST(CotsMap, SymmetricKiteAndRightAngleMaps) {
 }
 
 TEST(CotsMap, ParallelogramIsTheAffineMap) {
-  const Vec2 a{0.2, -0.1}, b{0.5, 1.1}, d{1.4, 0.3};
+  const Vec2 a{0.25, -0.125}, b{0.5, 1.0}, d{1.5, 0.25};  // dyadic: a - b + c - d is exactly 0
   const Vec2 c = b + d - a;
   const CotsMap m(a, b, c, d);
-  if (!m.is_affine()) GTEST_SKIP() << "the rounded corners are not an exact parallelogram";
+  ASSERT_TRUE(m.is_affine());
   EXPECT_FALSE(m.fixed_point().has_value());
   EXPECT_EQ(m.log_u(), Complex(0.0));
   EXPECT_LT(dist(m.map(0.3, 0.6), a + 0.3 * (d - a) + 0.6 * (b - a)), 1e-15);
@@ -313,8 +313,8 @@ TEST(CotsMap, TrapezoidAndEqualOppositeSides) {
 
 TEST(CotsMap, FoldedQuadsGiveAMapThatNeverFolds) {
   // A self-crossing (bow-tie) corner quad: the bilinear map would fold; the COTS map keeps one Jacobian sign.
-  const CotsMap m({0, 0}, {1, 1}, {0, 1}, {1, 0});
-  EXPECT_LT(dist(m.map(1, 1), {0, 1}), 1e-15);
+  const CotsMap m({0, 0}, {1.2, 1}, {0, 1.3}, {1, 0});
+  EXPECT_LT(dist(m.map(1, 1), {0, 1.3}), 1e-15);
   int positive = 0, negative = 0;
   for (int i = 0; i <= 10; ++i)
     for (int j = 0; j <= 10; ++j) {
@@ -341,8 +341,11 @@ TEST(CotsMap, BadInputNamesTheCorners) {
   EXPECT_NE(message_of([&] { CotsMap({0, 0}, {1, 0}, {3, 0}, {2, 0}); }).find("collapses"), std::string::npos);
   EXPECT_NE(message_of([&] { CotsMap::from_spiral({1, 0}, {0, 0}, {0.2, 0.1}, {0.4, 0.2}); }).find("collapses"),
             std::string::npos);
-  EXPECT_NE(message_of([&] { CotsMap::from_spiral({1, 0}, {0, 0}, {0.0, 2 * kPi}, {0.4, 0.2}); }).find("corners a, d"),
+  // A full turn of U brings d back onto a (and c onto b).
+  EXPECT_NE(message_of([&] { CotsMap::from_spiral({1, 0}, {0, 0}, {0.0, 2 * kPi}, {0.4, 0.2}); }).find("coincide"),
             std::string::npos);
+  // The symmetric bow-tie is two quarter and half turns about one centre: its range is an arc.
+  EXPECT_NE(message_of([&] { CotsMap({0, 0}, {1, 1}, {0, 1}, {1, 0}); }).find("collapses"), std::string::npos);
   const CotsMap m(kA, kB, kC, kD);
   EXPECT_THROW(m.inverse({nan, 0.0}), InvalidInput);
   EXPECT_THROW(m.tiles_of({0.5, 0.5}, 0, 3), InvalidInput);
@@ -398,7 +401,7 @@ TEST(CotsMap, RandomQuadsRoundTripAndMatchTheirAreas) {
   EXPECT_GT(overlapping_points, 1000);
   EXPECT_LT(worst_trip, 1e-10);
   EXPECT_LT(worst_image, 1e-10);
-  EXPECT_LT(worst_corner, 1e-12);
+  EXPECT_LT(worst_corner, 1e-10);
   EXPECT_LT(worst_area, 1e-10);
   std::printf("[ measured ] random planar maps: %d maps (%d refused), %d points, %d with several pre-images\n", maps,
               refused, points, overlapping_points);

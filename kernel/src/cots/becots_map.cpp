@@ -57,7 +57,8 @@ Vec3 cone_axis(const Vec3 (&p)[4]) {
     std::ostringstream os;
     os << "the axis of the cone is undetermined (|(unit(DC) - unit(AB)) x (unit(BC) - unit(AD))| = " << glm::length(n)
        << " <= " << kBecotsAxisTolerance
-       << "): AB is nearly parallel to DC or AD to BC, and a family of cones passes through these corners";
+       << "): a family of fields passes through these corners, as when AB is nearly parallel to DC, or when "
+          "|AB| = |CD| and |AD| = |BC| (coaxial screws on cylinders of many axes)";
     fail_input("corners A, B, C, D", os.str());
   }
   return n / glm::length(n);
@@ -157,28 +158,22 @@ void BecotsMap::finish() {
   const Vec3 p[4] = {a_, b_, c_, d_};
   diameter_ = max_pairwise_distance(p);
   const double lu = shadow_.log_u().real(), lv = shadow_.log_v().real();
-  cylinder_ = !flat_ && lu == 0.0 && lv == 0.0;
   radial_ = shadow_.inv_af_ == 0.0 ? Complex(INFINITY, 0.0) : 1.0 / shadow_.inv_af_;
   if (flat_) {
     height_ = 0.0;
     return;  // the inverse and the area are the shadow's
   }
-  if (!std::isfinite(std::abs(radial_)))
-    fail_input("corners A, B, C, D", "their shadow across the axis is a parallelogram: the field has no apex");
+  // Off the plane, neither can happen to a field through four corners (their axis would be undetermined), but a
+  // shadow that is a parallelogram, or no dilation at all, would leave the field without an apex.
+  if (!std::isfinite(std::abs(radial_)) || (lu == 0.0 && lv == 0.0))
+    fail_input("corners A, B, C, D", "the field has no apex: its range is not on a cone");
   const double r = std::abs(radial_);
   const Vec3 radial3 = embed({radial_.real(), radial_.imag()});
-  if (cylinder_) {
-    height_ = INFINITY;
-    inv_length_ = 0.0;
-    radial_dir_ = axis_;
-    pu_ = hu_, pv_ = hv_;
-  } else {
-    height_ = std::abs(lu) >= std::abs(lv) ? hu_ / lu : hv_ / lv;
-    const double length = std::hypot(r, height_);
-    inv_length_ = 1.0 / length;
-    radial_dir_ = (radial3 + height_ * axis_) * inv_length_;
-    pu_ = lu * length, pv_ = lv * length;
-  }
+  height_ = std::abs(lu) >= std::abs(lv) ? hu_ / lu : hv_ / lv;
+  const double length = std::hypot(r, height_);
+  inv_length_ = 1.0 / length;
+  radial_dir_ = (radial3 + height_ * axis_) * inv_length_;
+  pu_ = lu * length, pv_ = lv * length;
   qu_ = shadow_.log_u().imag() * r, qv_ = shadow_.log_v().imag() * r;
   const double det = pu_ * qv_ - pv_ * qu_;
   const double sine = std::abs(det) / (std::hypot(pu_, qu_) * std::hypot(pv_, qv_));
@@ -286,7 +281,7 @@ double BecotsMap::tile_area(int i, int j, int nu, int nv) const {
 }
 
 std::optional<Vec3> BecotsMap::apex() const {
-  if (cylinder_ || !std::isfinite(std::abs(radial_))) return std::nullopt;
+  if (!std::isfinite(std::abs(radial_))) return std::nullopt;
   return a_ - embed({radial_.real(), radial_.imag()}) - height_ * axis_;
 }
 
@@ -310,7 +305,6 @@ BecotsMap BecotsMap::raised(double z) const {
 
 BecotsMap BecotsMap::projected() const {
   if (flat_) return *this;
-  if (cylinder_) fail_input("projected", "a cylinder's field has no apex, so no plane through it to project onto");
   BecotsMap m = raised(-height_);
   m.flat_ = true;
   m.hu_ = m.hv_ = 0.0;
@@ -320,7 +314,6 @@ BecotsMap BecotsMap::projected() const {
 
 double BecotsMap::bend_angle() const {
   if (flat_) return kHalfPi;
-  if (cylinder_) return 0.0;
   const Vec3 fa = embed({radial_.real(), radial_.imag()}) + height_ * axis_;
   return std::atan2(glm::length(glm::cross(fa, axis_)), glm::dot(fa, axis_));
 }
@@ -328,7 +321,7 @@ double BecotsMap::bend_angle() const {
 BecotsMap BecotsMap::unbent() const {
   if (flat_) return *this;
   const std::optional<Vec3> f = apex();
-  if (!f) fail_input("unbent", "a cylinder's field has no apex to unroll the sheet about");
+  if (!f) fail_input("unbent", "the field has no apex to unroll the sheet about");
   const double beta = bend_angle();
   const Vec3 unit_fa = glm::normalize(a_ - *f);
   // The axis tilted within the plane of T and FA until it is orthogonal to FA; angles about it grow by sin(beta).

@@ -9,16 +9,17 @@
 // the map splits along T into its shadow on the plane through A across T, which is a planar COTS map (the
 // dissertation's Project), and its height above that plane,
 //     height(x,y) = phi(x ln m_u + y ln m_v) (x hu + y hv),   hu = (D - A).T / phi(ln m_u),   hv = (B - A).T / phi(ln m_v),
-// with phi(s) = (e^s - 1)/s. When |AB| = |CD| and |AD| = |BC| the dilations vanish, the apex runs to infinity along
-// the axis and the same expression is a pair of coaxial screws: the range lies on a cylinder (the documented
-// degenerate path; no apex, so Project and Bend are refused there). |AB| = |CD| alone is an ordinary BeCOTS map
-// whose U is a pure rotation.
+// with phi(s) = (e^s - 1)/s. As |CD|/|AB| and |BC|/|AD| approach 1 the apex runs to infinity along the axis and the
+// same expression tends to a pair of coaxial screws (a range on a cylinder), with no division by a vanishing
+// dilation. |AB| = |CD| alone is an ordinary BeCOTS map whose U is a pure rotation. |AB| = |CD| together with
+// |AD| = |BC| off a plane is refused: a one-parameter family of coaxial screw fields, on cylinders of different
+// axes, passes through such corners (the axis condition below has no unique solution).
 //
 // The axis is the direction orthogonal to unit(DC) - unit(AB) and to unit(BC) - unit(AD) (the rotation about T that
 // turns AB's direction into DC's, and AD's into BC's). Coplanar corners give the planar COTS map in their plane
 // (the axis is the plane's normal, any shape the planar map accepts, parallelograms included). Refused, with
 // InvalidInput naming the corners: NaN or infinite corners, adjacent corners that coincide, collinear corners,
-// non-coplanar corners whose axis is undetermined (a one-parameter family of cones passes through them), and
+// non-coplanar corners whose axis is undetermined (a one-parameter family of fields passes through them), and
 // ranges that collapse to a curve.
 #include <optional>
 #include <vector>
@@ -95,7 +96,6 @@ class BecotsMap {
   Complex log_u() const { return shadow_.log_u(); }
   Complex log_v() const { return shadow_.log_v(); }
   bool is_flat() const { return flat_; }
-  bool is_cylinder() const { return cylinder_; }
   // The map's shadow along the axis on the plane through A, in the frame (A, plane_x, plane_y).
   const CotsMap& shadow() const { return shadow_; }
   const Vec3& plane_x() const { return plane_x_; }
@@ -113,13 +113,13 @@ class BecotsMap {
   Vec3 axis_{0.0, 0.0, 1.0}, plane_x_{1.0, 0.0, 0.0}, plane_y_{0.0, 1.0, 0.0};
   CotsMap shadow_;          // the planar map of the shadows, corner a at the origin
   double hu_ = 0.0, hv_ = 0.0;  // height rates: (D - A).T / phi(ln m_u), (B - A).T / phi(ln m_v)
-  bool flat_ = true, cylinder_ = false;
+  bool flat_ = true;
   // Derived for the inverse and the area: A - F = radial + height_ T, its length, and the well-scaled 2 x 2 system
   // [pu pv; qu qv] (x, y) = (radial log distance, arc length) of solve_cone.
   Complex radial_{0.0};  // the shadow of A - F in the plane frame (finite unless the shadow is a parallelogram)
-  double height_ = 0.0;  // (A - F).T; infinite on a cylinder
-  double inv_length_ = 0.0;  // 1/|A - F|; 0 on a cylinder
-  Vec3 radial_dir_{0.0};  // (A - F)/|A - F|, the axis on a cylinder
+  double height_ = 0.0;      // (A - F).T
+  double inv_length_ = 0.0;  // 1/|A - F|
+  Vec3 radial_dir_{0.0};     // (A - F)/|A - F|
   double pu_ = 0.0, pv_ = 0.0, qu_ = 0.0, qv_ = 0.0;
   double diameter_ = 0.0;
 };
