@@ -126,7 +126,8 @@ Refuses (ValueError naming the corners) NaN corners, coinciding adjacent corners
 parallelograms are the affine map.)doc")
       .def(py::init([](py::handle a, py::handle b, py::handle c, py::handle d, py::handle branches) {
              const auto k = to_branches(branches);
-             return CotsMap(to_vec2(a, "a"), to_vec2(b, "b"), to_vec2(c, "c"), to_vec2(d, "d"), k.first, k.second);
+             return CotsMap(to_vec2(a, "corner a"), to_vec2(b, "corner b"), to_vec2(c, "corner c"), to_vec2(d, "corner d"),
+                            k.first, k.second);
            }),
            py::arg("a"), py::arg("b"), py::arg("c"), py::arg("d"), py::arg("branches") = py::make_tuple(0, 0))
       .def_static(
@@ -182,7 +183,8 @@ M(1,0) = d (3D corners); its range lies on the cone of apex F and axis T (a plan
 raised(z) / projected(), bent(beta) / unbent().)doc")
       .def(py::init([](py::handle a, py::handle b, py::handle c, py::handle d, py::handle branches) {
              const auto k = to_branches(branches);
-             return BecotsMap(to_vec3(a, "a"), to_vec3(b, "b"), to_vec3(c, "c"), to_vec3(d, "d"), k.first, k.second);
+             return BecotsMap(to_vec3(a, "corner A"), to_vec3(b, "corner B"), to_vec3(c, "corner C"),
+                              to_vec3(d, "corner D"), k.first, k.second);
            }),
            py::arg("a"), py::arg("b"), py::arg("c"), py::arg("d"), py::arg("branches") = py::make_tuple(0, 0))
       .def_static(

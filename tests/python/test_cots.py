@@ -111,8 +111,10 @@ def test_cots_bad_arguments():
         m.inverse([[math.nan, 0.0]])
     with pytest.raises(ValueError, match="nu"):
         m.tiles((0.5, 0.5), 0, 2)
-    with pytest.raises(ValueError):
+    with pytest.raises(TypeError):
         sl.CotsMap((0, 0), (1, 0))
+    with pytest.raises(ValueError, match="corner c"):
+        sl.CotsMap((0, 0), (0.1, 1), (1.3, 1.2, 5.0), (1, 0))
 
 
 def becots_corners():
