@@ -370,6 +370,36 @@ TEST(BecotsMap, CoplanarCornersAreThePlanarMap) {
   }
 }
 
+TEST(BecotsMap, BranchesFromCornersRecoverWoundFields) {
+  // A field that turns more than a half turn along x: its corners give it back with one more turn about the axis
+  // (+1 or -1, depending on whether the constructor's axis points like the field's).
+  std::mt19937_64 rng(19);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int rebuilt = 0;
+  double worst = 0.0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const Vec3 apex{unit(rng), unit(rng), unit(rng)}, axis{unit(rng), unit(rng), unit(rng)};
+    const Vec3 a = apex + 2.0 * Vec3(unit(rng), unit(rng), unit(rng));
+    const double wu = (kPi + 0.2) + 1.5 * (unit(rng) + 1.0), wv = 0.8 * unit(rng);  // wu in (pi, 2 pi + ...)
+    std::optional<BecotsMap> field;
+    try {
+      field = BecotsMap::from_field(apex, axis, a, {0.3 * unit(rng), wu}, {0.3 * unit(rng), wv});
+    } catch (const InvalidInput&) {
+      continue;
+    }
+    const BecotsMap principal(field->a(), field->b(), field->c(), field->d());
+    const int k = glm::dot(principal.axis(), field->axis()) > 0 ? 1 : -1;
+    const BecotsMap m(field->a(), field->b(), field->c(), field->d(), wu > 3 * kPi ? 2 * k : k, 0);
+    double err = 0.0;
+    for (double x : {0.2, 0.5, 0.8}) err = std::max(err, dist(m.map(x, 0.5), field->map(x, 0.5)));
+    worst = std::max(worst, err / std::max(1.0, dist(field->a(), *field->apex())));
+    ++rebuilt;
+  }
+  EXPECT_GT(rebuilt, 150);
+  EXPECT_LT(worst, 1e-10);
+  cots_test::report("wound BeCOTS fields rebuilt from corners with branches, largest map error", worst);
+}
+
 TEST(BecotsMap, BadInputNamesTheCorners) {
   const double nan = std::nan("");
   const Vec3 a{0, 0, 0}, b{0.1, 1, 0.2}, c{1.3, 1.2, -0.3}, d{1, 0, 0.1};

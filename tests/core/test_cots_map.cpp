@@ -327,6 +327,27 @@ TEST(CotsMap, FoldedQuadsGiveAMapThatNeverFolds) {
   EXPECT_NEAR(m.area(), numerical_area(m), 1e-12);
 }
 
+TEST(CotsMap, BranchesFromCornersRecoverWoundSpirals) {
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  double worst = 0.0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const int ku = trial % 5 - 2, kv = (trial / 5) % 3 - 1;  // windings -2..2 and -1..1
+    const Complex lu(0.4 * unit(rng), 2 * kPi * ku + 0.9 * kPi * unit(rng));
+    const Complex lv(0.4 * unit(rng), 2 * kPi * kv + 0.9 * kPi * unit(rng));
+    std::optional<CotsMap> spiral;
+    try {
+      spiral = CotsMap::from_spiral({unit(rng), unit(rng)}, {unit(rng), unit(rng)}, lu, lv);
+    } catch (const InvalidInput&) {
+      continue;
+    }
+    const CotsMap m(spiral->a(), spiral->b(), spiral->c(), spiral->d(), ku, kv);
+    worst = std::max({worst, std::abs(m.log_u() - lu), std::abs(m.log_v() - lv),
+                      dist(m.map(0.4, 0.7), spiral->map(0.4, 0.7))});
+  }
+  EXPECT_LT(worst, 1e-12);
+}
+
 TEST(CotsMap, BadInputNamesTheCorners) {
   const double nan = std::nan("");
   EXPECT_NE(message_of([&] { CotsMap({nan, 0}, kB, kC, kD); }).find("corner a"), std::string::npos);
