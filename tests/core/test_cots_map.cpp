@@ -159,6 +159,31 @@ TEST(CotsMap, P1AreasInClosedFormMatchNumericalOnes) {
   EXPECT_NEAR(sum, m.area(), 1e-14);
 }
 
+TEST(CotsMap, P1MatrixOfDisksTotalAreaAndCentroid) {
+  // Oracles 15 and 16: disks at M((i + .5)/n, (j + .5)/n), n = 5, each the similar copy of the template disk.
+  const CotsMap m(kA, kB, kC, kD);
+  const int n = 5;
+  const Vec2 c0 = m.map(0.1, 0.1);
+  const double r0 = 0.3 * dist(m.map(0.2, 0.0), kA);
+  EXPECT_LT(dist(c0, {0.10862984222853544, 0.09836189039960397}), 1e-15);
+  EXPECT_NEAR(r0, 0.055168917304841955, 1e-15);
+  double total = 0.0;
+  Vec2 moment{0.0};
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const auto s = m.tile_similarity(i, j, n, n);
+      const Vec2 c = s.apply(c0);
+      EXPECT_LT(dist(c, m.map((i + 0.5) / n, (j + 0.5) / n)), 1e-15);
+      const double area = kPi * r0 * r0 * s.scale() * s.scale();
+      total += area;
+      moment += area * c;
+    }
+  EXPECT_NEAR(total, 0.33449522352684197, 1e-14);
+  EXPECT_LT(dist(moment / total, {0.6342557519680101, 0.5784870021543567}), 1e-14);
+  // s r / t: template area times area(R) / area(T_00).
+  EXPECT_NEAR(kPi * r0 * r0 * m.area() / m.tile_area(0, 0, n, n), total, 1e-14);
+}
+
 TEST(CotsMap, P1RoundTripsAndTileLookup) {
   const CotsMap m(kA, kB, kC, kD);
   for (auto [x, y] : {std::pair{0.3, 0.7}, std::pair{0.5, 0.5}, std::pair{0.9, 0.1}, std::pair{0.0, 1.0},
