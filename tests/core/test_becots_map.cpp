@@ -400,6 +400,24 @@ TEST(BecotsMap, BranchesFromCornersRecoverWoundFields) {
   cots_test::report("wound BeCOTS fields rebuilt from corners with branches, largest map error", worst);
 }
 
+TEST(BecotsMap, ContinuousAcrossTheCoplanarThreshold) {
+  // C lifted by eps off the plane of P1: flat below 1e-12 (relative volume), a cone above; the maps move by O(eps).
+  const Vec3 a{0, 0, 0}, b{0.1, 1, 0}, c{1.3, 1.2, 0}, d{1, 0, 0};
+  const BecotsMap flat(a, b, c, d);
+  double worst_ratio = 0.0, worst_trip = 0.0;
+  for (double eps : {1e-14, 1e-12, 1e-11, 1e-9, 1e-6, 1e-3}) {
+    const BecotsMap m(a, b, c + Vec3(0, 0, eps), d);
+    EXPECT_EQ(m.is_flat(), eps <= 1e-12) << eps;
+    for (double x : {0.0, 0.3, 0.8})
+      for (double y : {0.2, 0.9}) {
+        worst_ratio = std::max(worst_ratio, dist(m.map(x, y), flat.map(x, y)) / eps);
+        worst_trip = std::max(worst_trip, round_trip_error(m, x, y));
+      }
+  }
+  EXPECT_LT(worst_ratio, 2.0);
+  EXPECT_LT(worst_trip, 1e-14);
+}
+
 TEST(BecotsMap, BadInputNamesTheCorners) {
   const double nan = std::nan("");
   const Vec3 a{0, 0, 0}, b{0.1, 1, 0.2}, c{1.3, 1.2, -0.3}, d{1, 0, 0.1};
