@@ -16,6 +16,7 @@
 #include "steady/core/vec.hpp"
 
 #include "steady/cots/becots_map.hpp"
+#include "steady/cots/becots_range.hpp"
 #include "steady/cots/cots_map.hpp"
 
 #include "steady/lattice/beam_frustum.hpp"

@@ -91,6 +91,11 @@ Vec2 BecotsMap::shadow_of(const Vec3& q) const {
   return {glm::dot(e, plane_x_), glm::dot(e, plane_y_)};
 }
 
+BecotsMap::Complex BecotsMap::shadow_ratio(const Vec3& q) const {
+  const Vec2 s = shadow_of(q);
+  return 1.0 + Complex(s.x, s.y) * shadow_.inv_af_;
+}
+
 BecotsMap::BecotsMap(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, int branch_u, int branch_v) {
   require_within(a, kMaxCoordinate, "corner A");
   require_within(b, kMaxCoordinate, "corner B");
@@ -159,22 +164,21 @@ void BecotsMap::finish() {
   diameter_ = max_pairwise_distance(p);
   const double lu = shadow_.log_u().real(), lv = shadow_.log_v().real();
   radial_ = shadow_.inv_af_ == 0.0 ? Complex(INFINITY, 0.0) : 1.0 / shadow_.inv_af_;
-  if (flat_) {
-    height_ = 0.0;
-    return;  // the inverse and the area are the shadow's
-  }
+  height_ = 0.0;
+  if (flat_ && !std::isfinite(std::abs(radial_))) return;  // a parallelogram: the shadow (affine) does everything
   // Off the plane, neither can happen to a field through four corners (their axis would be undetermined), but a
   // shadow that is a parallelogram, or no dilation at all, would leave the field without an apex.
-  if (!std::isfinite(std::abs(radial_)) || (lu == 0.0 && lv == 0.0))
+  if (!std::isfinite(std::abs(radial_)) || (!flat_ && lu == 0.0 && lv == 0.0))
     fail_input("corners A, B, C, D", "the field has no apex: its range is not on a cone");
   const double r = std::abs(radial_);
   const Vec3 radial3 = embed({radial_.real(), radial_.imag()});
-  height_ = std::abs(lu) >= std::abs(lv) ? hu_ / lu : hv_ / lv;
+  if (!flat_) height_ = std::abs(lu) >= std::abs(lv) ? hu_ / lu : hv_ / lv;
   const double length = std::hypot(r, height_);
   inv_length_ = 1.0 / length;
   radial_dir_ = (radial3 + height_ * axis_) * inv_length_;
   pu_ = lu * length, pv_ = lv * length;
   qu_ = shadow_.log_u().imag() * r, qv_ = shadow_.log_v().imag() * r;
+  if (flat_) return;  // the shadow checked its own collapse; its inverse and area are used
   const double det = pu_ * qv_ - pv_ * qu_;
   const double sine = std::abs(det) / (std::hypot(pu_, qu_) * std::hypot(pv_, qv_));
   if (!(sine > kCotsCollapseTolerance)) {
@@ -199,9 +203,9 @@ std::vector<CotsPreimage> BecotsMap::solve_cone(const Vec3& q, const ParameterBo
   // Two real equations, each scaled to a length so that the system stays well conditioned from flat cones to
   // cylinders: x pu + y pv = |A - F| ln(|Q - F| / |A - F|) (along the generator) and x qu + y qv = |a' - f'| angle
   // (the arc about the axis, from the shadows).
-  const Complex z1 = Complex(shadow_of(q).x, shadow_of(q).y) * shadow_.inv_af_;
-  if (z1 == -1.0) return {};  // q on the axis: no angle
-  const double angle0 = cots_detail::log1p(z1).imag();
+  const Complex z = shadow_ratio(q);
+  if (z == 0.0) return {};  // q on the axis: no angle
+  const double angle0 = std::arg(z);
   const Vec3 e = q - a_;
   // |Q - F|^2 / |A - F|^2 = 1 + t / |A - F| with t = 2 e.n + |e|^2 / |A - F|; the log is taken without forming F.
   const double t = 2.0 * glm::dot(e, radial_dir_) + inv_length_ * glm::dot(e, e);

@@ -102,11 +102,15 @@ class BecotsMap {
   const Vec3& plane_y() const { return plane_y_; }
 
  private:
+  friend class BecotsRangeFinder;
   BecotsMap() = default;
   void set_axis(const Vec3& axis);
   void finish();
   Vec3 embed(const Vec2& p) const { return plane_x_ * p.x + plane_y_ * p.y; }
   Vec2 shadow_of(const Vec3& q) const;
+  // (q' - f') / (a' - f') for the shadows q', a' and the apex's f': its modulus is the ratio of the distances to the
+  // axis, its argument the azimuth from A's (formed without f').
+  Complex shadow_ratio(const Vec3& q) const;
   std::vector<CotsPreimage> solve_cone(const Vec3& q, const ParameterBox& box) const;
 
   Vec3 a_{0.0}, b_{0.0}, c_{0.0}, d_{0.0};
@@ -114,8 +118,8 @@ class BecotsMap {
   CotsMap shadow_;          // the planar map of the shadows, corner a at the origin
   double hu_ = 0.0, hv_ = 0.0;  // height rates: (D - A).T / phi(ln m_u), (B - A).T / phi(ln m_v)
   bool flat_ = true;
-  // Derived for the inverse and the area: A - F = radial + height_ T, its length, and the well-scaled 2 x 2 system
-  // [pu pv; qu qv] (x, y) = (radial log distance, arc length) of solve_cone.
+  // Derived for the inverse, the area and the range finder (whenever there is an apex): A - F = radial + height_ T,
+  // its length, and the well-scaled 2 x 2 system [pu pv; qu qv] (x, y) = (radial log distance, arc length).
   Complex radial_{0.0};  // the shadow of A - F in the plane frame (finite unless the shadow is a parallelogram)
   double height_ = 0.0;      // (A - F).T
   double inv_length_ = 0.0;  // 1/|A - F|
