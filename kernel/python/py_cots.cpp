@@ -6,11 +6,14 @@
 
 #include "convert.hpp"
 #include "steady/cots/becots_map.hpp"
+#include "steady/cots/becots_range.hpp"
 #include "steady/cots/cots_map.hpp"
 
 namespace steadypy {
 
+using steady::Ball;
 using steady::BecotsMap;
+using steady::BecotsRangeFinder;
 using steady::CotsMap;
 using steady::CotsPreimage;
 using steady::Vec2;
@@ -240,11 +243,80 @@ raised(z) / projected(), bent(beta) / unbent().)doc")
       .def_property_readonly("shadow", &BecotsMap::shadow, "The planar map of the shadows across the axis.");
 }
 
+std::vector<Ball> to_balls(py::handle value) {
+  if (py::isinstance<py::str>(value) || !py::isinstance<py::sequence>(value))
+    value_error("balls", "expected a list of ((x, y, z), radius)");
+  auto seq = py::reinterpret_borrow<py::sequence>(value);
+  std::vector<Ball> balls;
+  for (std::size_t n = 0; n < seq.size(); ++n) {
+    const std::string name = "balls[" + std::to_string(n) + "]";
+    auto item = py::reinterpret_borrow<py::sequence>(seq[n]);
+    if (!py::isinstance<py::sequence>(seq[n]) || item.size() != 2) value_error(name, "expected ((x, y, z), radius)");
+    balls.push_back({to_vec3(item[0], name + ".center"), to_double(item[1], name + ".radius")});
+  }
+  return balls;
+}
+
+py::array_t<int> pattern_ball_array(const std::vector<steady::PatternBall>& found) {
+  py::array_t<int> out({py::ssize_t(found.size()), py::ssize_t(3)});
+  auto m = out.mutable_unchecked<2>();
+  for (std::size_t k = 0; k < found.size(); ++k) m(k, 0) = found[k].i, m(k, 1) = found[k].j, m(k, 2) = found[k].n;
+  return out;
+}
+
+void bind_becots_range(py::module_& m) {
+  py::class_<BecotsRangeFinder>(m, "BecotsRangeFinder", R"doc(
+The BeCOTS RangeFinder: a pattern of balls whose group (i, j) is the template `balls` moved by map.field(i du, j dv)
+(i < nu, j < nv), and the groups a query ball may meet, from log-polar bounds about the map's apex, in time
+independent of the counts.)doc")
+      .def(py::init([](const BecotsMap& map, py::handle balls, py::handle counts, py::handle steps) {
+             auto c = py::reinterpret_borrow<py::sequence>(counts);
+             auto s = py::reinterpret_borrow<py::sequence>(steps);
+             if (!py::isinstance<py::sequence>(counts) || c.size() != 2) value_error("counts", "expected (nu, nv)");
+             if (!py::isinstance<py::sequence>(steps) || s.size() != 2) value_error("steps", "expected (du, dv)");
+             const auto nu = to_int(c[0], "counts[0]"), nv = to_int(c[1], "counts[1]");
+             if (nu < 1 || nv < 1 || nu > 1000000000 || nv > 1000000000)
+               value_error("counts", "each must be within 1..10^9");
+             return BecotsRangeFinder(map, to_balls(balls), static_cast<int>(nu), static_cast<int>(nv),
+                                      to_double(s[0], "steps[0]"), to_double(s[1], "steps[1]"));
+           }),
+           py::arg("map"), py::arg("balls"), py::arg("counts"), py::arg("steps"))
+      .def(
+          "candidates",
+          [](const BecotsRangeFinder& f, py::handle center, double radius) {
+            py::list out;
+            for (const auto& r : f.candidates({to_vec3(center, "center"), radius}))
+              out.append(py::make_tuple(r.i0, r.i1, r.j0, r.j1));
+            return out;
+          },
+          py::arg("center"), py::arg("radius"), "Rectangles (i0, i1, j0, j1) of groups, inclusive.")
+      .def(
+          "interfering",
+          [](const BecotsRangeFinder& f, py::handle center, double radius) {
+            return pattern_ball_array(f.interfering({to_vec3(center, "center"), radius}));
+          },
+          py::arg("center"), py::arg("radius"), "The balls (i, j, n) that meet the query ball, as an M x 3 array.")
+      .def(
+          "interfering_naive",
+          [](const BecotsRangeFinder& f, py::handle center, double radius) {
+            return pattern_ball_array(f.interfering_naive({to_vec3(center, "center"), radius}));
+          },
+          py::arg("center"), py::arg("radius"))
+      .def(
+          "ball",
+          [](const BecotsRangeFinder& f, int i, int j, int n) {
+            const Ball b = f.ball(i, j, n);
+            return py::make_tuple(vec3_array(b.center), b.radius);
+          },
+          py::arg("i"), py::arg("j"), py::arg("n"));
+}
+
 }  // namespace
 
 void bind_cots(py::module_& m) {
   bind_cots_map(m);
   bind_becots_map(m);
+  bind_becots_range(m);
 }
 
 }  // namespace steadypy

@@ -175,3 +175,27 @@ def test_becots_bent_sheet_overlaps_itself():
 def test_becots_bad_input_names_the_corners(corners, words):
     with pytest.raises(ValueError, match=words):
         sl.BecotsMap(*corners)
+
+
+def test_becots_range_finder_holds_every_interfering_ball(rng):
+    m = sl.BecotsMap((0, 0, 0), (0.1, 1, 0), (1.3, 1.2, 0), (1, 0, 0)).bent(0.7)
+    n = 40
+    step = 1.0 / (n - 1)
+    spacing = np.linalg.norm(m.map((step, 0)) - m.map((0, 0)))
+    finder = sl.BecotsRangeFinder(m, [(m.map((0.3 * step, 0.4 * step)), 0.25 * spacing)], (n, n), (step, step))
+    hits = 0
+    for _ in range(300):
+        center = m.map(rng.uniform(0, 1, 2)) + rng.uniform(-1, 1, 3) * spacing
+        radius = rng.uniform(0, 2) * spacing
+        fast, naive = finder.interfering(center, radius), finder.interfering_naive(center, radius)
+        assert sorted(map(tuple, fast)) == sorted(map(tuple, naive))
+        hits += len(naive)
+        groups = sum((i1 - i0 + 1) * (j1 - j0 + 1) for i0, i1, j0, j1 in finder.candidates(center, radius))
+        assert groups < n * n / 10
+    assert hits > 100
+    center, radius = finder.ball(3, 5, 0)
+    assert radius == pytest.approx(0.25 * spacing * abs(cmath.exp((3 * m.log_u + 5 * m.log_v) * step)), rel=1e-12)
+    with pytest.raises(ValueError, match="n"):
+        finder.ball(0, 0, 1)
+    with pytest.raises(ValueError, match="counts"):
+        sl.BecotsRangeFinder(m, [((0, 0, 0), 0.1)], (0, 3), (0.1, 0.1))

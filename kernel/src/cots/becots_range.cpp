@@ -127,7 +127,13 @@ std::vector<GroupRange> BecotsRangeFinder::candidates(const Ball& query) const {
   return ranges;
 }
 
-Ball BecotsRangeFinder::ball(int i, int j, int n) const { return map_.field(i * du_, j * dv_).apply(balls_[n]); }
+Ball BecotsRangeFinder::ball(int i, int j, int n) const {
+  if (i < 0 || i >= nu_) fail_input("i", "must be in 0.." + std::to_string(nu_ - 1) + " (got " + std::to_string(i) + ")");
+  if (j < 0 || j >= nv_) fail_input("j", "must be in 0.." + std::to_string(nv_ - 1) + " (got " + std::to_string(j) + ")");
+  if (n < 0 || n >= static_cast<int>(balls_.size()))
+    fail_input("n", "must be in 0.." + std::to_string(balls_.size() - 1) + " (got " + std::to_string(n) + ")");
+  return map_.field(i * du_, j * dv_).apply(balls_[n]);
+}
 
 std::vector<PatternBall> BecotsRangeFinder::interfering(const Ball& query) const {
   std::vector<PatternBall> found;
