@@ -17,6 +17,7 @@
 
 #include "steady/cots/becots_map.hpp"
 #include "steady/cots/becots_range.hpp"
+#include "steady/cots/becots_sums.hpp"
 #include "steady/cots/cots_map.hpp"
 
 #include "steady/lattice/beam_frustum.hpp"
