@@ -7,6 +7,7 @@
 #include "convert.hpp"
 #include "steady/cots/becots_map.hpp"
 #include "steady/cots/becots_range.hpp"
+#include "steady/cots/becots_sums.hpp"
 #include "steady/cots/cots_map.hpp"
 
 namespace steadypy {
@@ -257,6 +258,24 @@ std::vector<Ball> to_balls(py::handle value) {
   return balls;
 }
 
+// A pattern's counts (nu, nv) and steps (du, dv).
+struct PatternGrid {
+  int nu, nv;
+  double du, dv;
+};
+
+PatternGrid to_grid(py::handle counts, py::handle steps) {
+  if (py::isinstance<py::str>(counts) || !py::isinstance<py::sequence>(counts) || py::len(counts) != 2)
+    value_error("counts", "expected (nu, nv)");
+  if (py::isinstance<py::str>(steps) || !py::isinstance<py::sequence>(steps) || py::len(steps) != 2)
+    value_error("steps", "expected (du, dv)");
+  auto c = py::reinterpret_borrow<py::sequence>(counts);
+  auto s = py::reinterpret_borrow<py::sequence>(steps);
+  const auto nu = to_int(c[0], "counts[0]"), nv = to_int(c[1], "counts[1]");
+  if (nu < 1 || nv < 1 || nu > 1000000000 || nv > 1000000000) value_error("counts", "each must be within 1..10^9");
+  return {static_cast<int>(nu), static_cast<int>(nv), to_double(s[0], "steps[0]"), to_double(s[1], "steps[1]")};
+}
+
 py::array_t<int> pattern_ball_array(const std::vector<steady::PatternBall>& found) {
   py::array_t<int> out({py::ssize_t(found.size()), py::ssize_t(3)});
   auto m = out.mutable_unchecked<2>();
@@ -270,15 +289,8 @@ The BeCOTS RangeFinder: a pattern of balls whose group (i, j) is the template `b
 (i < nu, j < nv), and the groups a query ball may meet, from log-polar bounds about the map's apex, in time
 independent of the counts.)doc")
       .def(py::init([](const BecotsMap& map, py::handle balls, py::handle counts, py::handle steps) {
-             auto c = py::reinterpret_borrow<py::sequence>(counts);
-             auto s = py::reinterpret_borrow<py::sequence>(steps);
-             if (!py::isinstance<py::sequence>(counts) || c.size() != 2) value_error("counts", "expected (nu, nv)");
-             if (!py::isinstance<py::sequence>(steps) || s.size() != 2) value_error("steps", "expected (du, dv)");
-             const auto nu = to_int(c[0], "counts[0]"), nv = to_int(c[1], "counts[1]");
-             if (nu < 1 || nv < 1 || nu > 1000000000 || nv > 1000000000)
-               value_error("counts", "each must be within 1..10^9");
-             return BecotsRangeFinder(map, to_balls(balls), static_cast<int>(nu), static_cast<int>(nv),
-                                      to_double(s[0], "steps[0]"), to_double(s[1], "steps[1]"));
+             const PatternGrid g = to_grid(counts, steps);
+             return BecotsRangeFinder(map, to_balls(balls), g.nu, g.nv, g.du, g.dv);
            }),
            py::arg("map"), py::arg("balls"), py::arg("counts"), py::arg("steps"))
       .def(
@@ -317,6 +329,21 @@ void bind_cots(py::module_& m) {
   bind_cots_map(m);
   bind_becots_map(m);
   bind_becots_range(m);
+  m.def(
+      "becots_pattern_properties",
+      [](const BecotsMap& map, py::handle balls, py::handle counts, py::handle steps) {
+        const PatternGrid g = to_grid(counts, steps);
+        const steady::PatternProperties p =
+            steady::becots_ball_pattern_properties(map, to_balls(balls), g.nu, g.nv, g.du, g.dv);
+        py::dict out;
+        out["volume"] = p.volume;
+        out["area"] = p.area;
+        out["centroid"] = vec3_array(p.centroid);
+        return out;
+      },
+      py::arg("map"), py::arg("balls"), py::arg("counts"), py::arg("steps"),
+      "Volume, area and centroid of the BeCOTS pattern of balls (group (i, j) = balls moved by map.field(i du, j dv)), "
+      "in closed form, each ball counted whole.");
 }
 
 }  // namespace steadypy

@@ -199,3 +199,22 @@ def test_becots_range_finder_holds_every_interfering_ball(rng):
         finder.ball(0, 0, 1)
     with pytest.raises(ValueError, match="counts"):
         sl.BecotsRangeFinder(m, [((0, 0, 0), 0.1)], (0, 3), (0.1, 0.1))
+
+
+def test_becots_pattern_properties_in_closed_form():
+    m = sl.BecotsMap((0, 0, 0), (0.1, 1, 0.2), (1.3, 1.2, -0.3), (1, 0, 0.1))
+    balls = [(m.map((0.02, 0.03)), 0.01), (m.map((0.05, 0.01)) + (0, 0, 0.01), 0.005)]
+    nu, nv, du, dv = 30, 20, 1 / 29, 1 / 20
+    p = sl.becots_pattern_properties(m, balls, (nu, nv), (du, dv))
+    volume, moment = 0.0, np.zeros(3)
+    for i in range(nu):
+        for j in range(nv):
+            s = m.field(i * du, j * dv)
+            for c, r in balls:
+                v = 4 / 3 * math.pi * (r * s.scale) ** 3
+                volume += v
+                moment += v * s.apply(c)
+    assert p["volume"] == pytest.approx(volume, rel=1e-12)
+    assert np.abs(p["centroid"] - moment / volume).max() < 1e-12
+    with pytest.raises(ValueError, match="counts"):
+        sl.becots_pattern_properties(m, balls, (0, 2), (0.1, 0.1))
