@@ -15,6 +15,7 @@
 #include "steady/core/tolerance.hpp"
 #include "steady/core/vec.hpp"
 
+#include "steady/cots/becots_lattice.hpp"
 #include "steady/cots/becots_map.hpp"
 #include "steady/cots/becots_range.hpp"
 #include "steady/cots/becots_sums.hpp"
