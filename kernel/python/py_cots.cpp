@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include "convert.hpp"
+#include "steady/cots/becots_lattice.hpp"
 #include "steady/cots/becots_map.hpp"
 #include "steady/cots/becots_range.hpp"
 #include "steady/cots/becots_sums.hpp"
@@ -325,10 +326,51 @@ independent of the counts.)doc")
 
 }  // namespace
 
+// A connectivity by name ("triangle", "kagome", "honeycomb") or as (nodes (s, t), beam patterns (n1, di, dj, dk, n2)).
+steady::BecotsConnectivity to_connectivity(py::handle value) {
+  if (py::isinstance<py::str>(value)) return steady::becots_connectivity(value.cast<std::string>());
+  if (!py::isinstance<py::sequence>(value) || py::len(value) != 2)
+    value_error("connectivity", "expected 'triangle', 'kagome', 'honeycomb' or (nodes [(s, t), ...], beams)");
+  auto pair = py::reinterpret_borrow<py::sequence>(value);
+  steady::BecotsConnectivity cells;
+  auto nodes = py::reinterpret_borrow<py::sequence>(pair[0]);
+  if (!py::isinstance<py::sequence>(pair[0])) value_error("connectivity.nodes", "expected a list of (s, t)");
+  for (std::size_t n = 0; n < nodes.size(); ++n)
+    cells.nodes.push_back(to_vec2(nodes[n], "connectivity.nodes[" + std::to_string(n) + "]"));
+  cells.beams = to_beams(pair[1]);
+  return cells;
+}
+
+void bind_becots_lattice(py::module_& m) {
+  m.def(
+      "becots_connectivity",
+      [](const std::string& name) {
+        const steady::BecotsConnectivity c = steady::becots_connectivity(name);
+        py::list nodes, beams;
+        for (const Vec2& p : c.nodes) nodes.append(py::make_tuple(p.x, p.y));
+        for (const auto& b : c.beams) beams.append(py::make_tuple(b.from, b.di, b.dj, b.dk, b.to));
+        return py::make_tuple(nodes, beams);
+      },
+      py::arg("name"), "(nodes (s, t) in the group's parameter cell, beam patterns) of 'triangle', 'kagome', 'honeycomb'.");
+  m.def(
+      "becots_lattice",
+      [](const BecotsMap& map, py::handle connectivity, py::handle counts, double radius, double layer_raise,
+         double beam_ratio) {
+        return steady::becots_lattice(map, to_connectivity(connectivity), to_counts(counts), radius, layer_raise,
+                                      beam_ratio);
+      },
+      py::arg("map"), py::arg("connectivity"), py::arg("counts"), py::arg("radius"), py::arg("layer_raise") = 0.0,
+      py::arg("beam_ratio") = 0.0,
+      "A Lattice laid on the map's nu x nv tiles (counts (nu, nv, layers)), its layers raised by layer_raise along "
+      "the axis; node radii `radius` scaled with the map; beams the hull of their balls, or beam_ratio times their "
+      "nodes' radii. An ordinary steady brick: every query, property and output applies.");
+}
+
 void bind_cots(py::module_& m) {
   bind_cots_map(m);
   bind_becots_map(m);
   bind_becots_range(m);
+  bind_becots_lattice(m);
   m.def(
       "becots_pattern_properties",
       [](const BecotsMap& map, py::handle balls, py::handle counts, py::handle steps) {

@@ -218,3 +218,23 @@ def test_becots_pattern_properties_in_closed_form():
     assert np.abs(p["centroid"] - moment / volume).max() < 1e-12
     with pytest.raises(ValueError, match="counts"):
         sl.becots_pattern_properties(m, balls, (0, 2), (0.1, 0.1))
+
+
+@pytest.mark.parametrize("connectivity, hub_degree", [("triangle", 6), ("kagome", 4), ("honeycomb", 3)])
+def test_becots_lattice_is_an_ordinary_lattice(connectivity, hub_degree, rng):
+    m = sl.BecotsMap(*becots_corners()).unbent().bent(0.8)
+    lat = sl.becots_lattice(m, connectivity, (9, 8, 2), 0.012, layer_raise=0.05, beam_ratio=0.6)
+    assert lat.layout == "any-order-brick" and lat.order == "WUV"
+    centers, radii = lat.balls()
+    nodes, _ = sl.becots_connectivity(connectivity)
+    # layer 0: every node on the map, at its tile's parameters
+    s, t = nodes[0]
+    assert np.abs(centers[lat.ball_index(4, 3, 0, 0)] - m.map(((4 + s) / 9, (3 + t) / 8))).max() < 1e-12
+    start, end = lat.beams()[:2]
+    hub = lat.ball_index(4, 4, 0, 0)
+    assert np.count_nonzero(start == hub) + np.count_nonzero(end == hub) == hub_degree
+    for _ in range(40):
+        c = centers[rng.integers(len(centers))] + rng.uniform(-0.03, 0.03, 3)
+        r = rng.uniform(0, 0.03)
+        auto, naive = lat.query_ball(c, r), lat.query_ball(c, r, method="naive")
+        assert np.array_equal(auto[0], naive[0]) and np.array_equal(auto[1], naive[1])
