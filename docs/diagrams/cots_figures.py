@@ -1,6 +1,8 @@
 """Draws docs/images/cots_maps.png from the steadylattice module: a planar COTS tiling, a self-overlapping one with
-the two pre-images of a point, and a BeCOTS sheet bent onto a cone above its flat shadow.
-Run: PYTHONPATH=build/python /usr/bin/python3 docs/diagrams/cots_figures.py [output.png]"""
+the two pre-images of a point, and a BeCOTS sheet bent onto a cone above its flat shadow; and
+docs/images/becots_lattice.png: BeCOTS lattices meshed by the kernel (a triangle-mesh slab and a two-layer Kagome
+stack joined by beams between the layers).
+Run: PYTHONPATH=build/python /usr/bin/python3 docs/diagrams/cots_figures.py [output folder]"""
 import os
 import sys
 
@@ -10,6 +12,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.patches import Polygon  # noqa: E402
+from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 
 import steadylattice as sl  # noqa: E402
 
@@ -91,8 +94,45 @@ def draw_becots(fig, position):
     ax.axis("off")
 
 
+def draw_mesh(ax, lattice, tolerance, title):
+    vertices, triangles = lattice.to_mesh(tolerance)
+    tri = vertices[triangles]
+    normals = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    normals /= np.maximum(np.linalg.norm(normals, axis=1, keepdims=True), 1e-300)
+    light = np.array([0.3, -0.5, 0.8]) / np.linalg.norm([0.3, -0.5, 0.8])
+    shade = 0.35 + 0.65 * np.clip(normals @ light, 0, 1)
+    colours = np.column_stack([0.95 * shade, 0.6 * shade, 0.25 * shade, np.ones_like(shade)])
+    ax.add_collection3d(Poly3DCollection(tri, facecolors=colours, linewidths=0))
+    lo, hi = vertices.min(axis=0), vertices.max(axis=0)
+    centre, half = (lo + hi) / 2, (hi - lo).max() / 2
+    ax.set_xlim(centre[0] - half, centre[0] + half)
+    ax.set_ylim(centre[1] - half, centre[1] + half)
+    ax.set_zlim(centre[2] - half, centre[2] + half)
+    ax.set_title("%s: %d balls, %d beams, %d triangles" % (title, lattice.ball_count, lattice.beam_count,
+                                                          len(triangles)), fontsize=9)
+    ax.view_init(elev=35, azim=-70)
+    ax.set_box_aspect((1, 1, 1), zoom=1.5)
+    ax.axis("off")
+
+
+def draw_lattices(out):
+    sheet = sl.BecotsMap.from_field((0, 0, 0), (0, 0, 1), (1, 0, 0), 0.2 + 1.5j, 0.6 + 0.2j)
+    cone = sheet.bent(0.6)
+    fig = plt.figure(figsize=(12, 5.5), dpi=110)
+    slab = sl.becots_lattice(cone, "triangle", (14, 9, 1), 0.02, beam_ratio=0.5)
+    draw_mesh(fig.add_subplot(1, 2, 1, projection="3d"), slab, 0.002, "triangle-mesh BeCOTS slab")
+    nodes, beams = sl.becots_connectivity("kagome")
+    beams = beams + [(n, 0, 0, 1, n) for n in range(len(nodes))]  # beams between the layers
+    stack = sl.becots_lattice(cone, (nodes, beams), (8, 6, 2), 0.011, layer_raise=0.15, beam_ratio=0.5)
+    draw_mesh(fig.add_subplot(1, 2, 2, projection="3d"), stack, 0.0012, "Kagome BeCOTS stack, 2 layers")
+    fig.tight_layout()
+    fig.savefig(out)
+    print(out)
+
+
 def main():
-    out = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "images", "cots_maps.png")
+    folder = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "images")
+    out = os.path.join(folder, "cots_maps.png")
     fig = plt.figure(figsize=(12, 4), dpi=110)
     draw_planar(fig.add_subplot(1, 3, 1))
     draw_overlap(fig.add_subplot(1, 3, 2))
@@ -100,6 +140,7 @@ def main():
     fig.tight_layout()
     fig.savefig(out)
     print(out)
+    draw_lattices(os.path.join(folder, "becots_lattice.png"))
 
 
 if __name__ == "__main__":

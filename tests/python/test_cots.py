@@ -238,3 +238,15 @@ def test_becots_lattice_is_an_ordinary_lattice(connectivity, hub_degree, rng):
         r = rng.uniform(0, 0.03)
         auto, naive = lat.query_ball(c, r), lat.query_ball(c, r, method="naive")
         assert np.array_equal(auto[0], naive[0]) and np.array_equal(auto[1], naive[1])
+
+
+def test_becots_stack_properties_use_the_closed_form_sums():
+    m = sl.BecotsMap(*becots_corners()).unbent().bent(0.8)
+    nodes, beams = sl.becots_connectivity("kagome")
+    beams = beams + [(n, 0, 0, 1, n) for n in range(len(nodes))]
+    lat = sl.becots_lattice(m, (nodes, beams), (8, 6, 2), 0.01, layer_raise=0.08, beam_ratio=0.6)
+    fast, brute = lat.properties(), lat.properties_brute_force()
+    assert fast["clean_verified"]
+    assert fast["volume"] == pytest.approx(brute["volume"], rel=1e-10)
+    assert fast["area"] == pytest.approx(brute["area"], rel=1e-10)
+    assert np.abs(np.asarray(fast["centroid"]) - np.asarray(brute["centroid"])).max() < 1e-10
