@@ -10,6 +10,7 @@
 #include "steady/core/errors.hpp"
 #include "steady/cots/becots_lattice.hpp"
 #include "steady/lattice/lattice_io.hpp"
+#include "steady/query/becots_query.hpp"
 #include "steady/query/lattice_query.hpp"
 
 namespace {
@@ -105,6 +106,47 @@ TEST(BecotsLattice, QueriesMatchBruteForceOnSlabsAndStacks) {
   EXPECT_GT(hits, queries / 2);
   std::printf("[ measured ] BeCOTS lattices: %ld queries (%ld hits), every query path equal to brute force\n", queries,
               hits);
+}
+
+TEST(BecotsLattice, TheMapLevelRangeFinderQueryEqualsNaive) {
+  std::mt19937_64 rng(43);
+  std::uniform_real_distribution<double> u01(0.0, 1.0), unit(-1.0, 1.0);
+  const BecotsMap sheet({0, 0, 0}, {0.1, 1, 0}, {1.3, 1.2, 0}, {1, 0, 0});
+  long queries = 0, hits = 0;
+  std::int64_t candidates = 0, groups = 0;
+  // a cone, a sheet wound more than once around its axis, a flat sheet; slabs and stacks joined between layers
+  for (const BecotsMap& map : {cone(), sheet.bent(0.6), sheet.bent(0.08), sheet}) {
+    for (const Counts& counts : {Counts{14, 10, 1}, Counts{9, 7, 3}}) {
+      BecotsConnectivity cells = becots_connectivity("kagome");
+      for (int n = 0; n < 3; ++n) {
+        BeamPattern b;
+        b.from = n, b.dk = 1, b.to = n;
+        cells.beams.push_back(b);
+      }
+      const Lattice lattice = becots_lattice(map, cells, counts, 0.004, 0.02, 0.6);
+      const LatticeQuery naive(lattice);
+      const BecotsLatticeQuery fast(lattice, map);
+      for (int q = 0; q < 100; ++q) {
+        const Ball e = lattice.ball(lattice.ball_id(static_cast<std::int64_t>(u01(rng) * lattice.ball_count())));
+        const double reach = q % 10 == 0 ? 0.3 : 0.02;  // now and then a large query
+        const Ball query{e.center + Vec3(unit(rng), unit(rng), unit(rng)) * reach, reach * u01(rng)};
+        const BallQueryResult expected = naive.query_ball(query, QueryMethod::Naive);
+        const BallQueryResult got = fast.query_ball(query);
+        EXPECT_EQ(got.balls, expected.balls);
+        EXPECT_EQ(got.beams, expected.beams);
+        ++queries;
+        hits += static_cast<long>(expected.balls.size() + expected.beams.size());
+        candidates += fast.candidate_groups(query);
+        groups += counts.groups();
+      }
+    }
+  }
+  EXPECT_GT(hits, queries);
+  std::printf("[ measured ] BecotsLatticeQuery: %ld queries (%ld hits) equal to naive; %.1f %% of the groups tested\n",
+              queries, hits, 100.0 * candidates / groups);
+  // Another map's lattice is refused.
+  const Lattice other = becots_lattice(cone(), becots_connectivity("triangle"), {4, 4, 1}, 0.01);
+  EXPECT_THROW(BecotsLatticeQuery(other, sheet.bent(0.6)), InvalidInput);
 }
 
 TEST(BecotsLattice, FileRoundTripAndBadInput) {

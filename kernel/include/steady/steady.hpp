@@ -34,6 +34,7 @@
 #include "steady/lattice/steady_brick_layout.hpp"
 #include "steady/lattice/table_layout.hpp"
 
+#include "steady/query/becots_query.hpp"
 #include "steady/query/block_bounds.hpp"
 #include "steady/query/clean_check.hpp"
 #include "steady/query/filtered_lattice.hpp"
