@@ -5,12 +5,17 @@
 //   naive (stored)    every ball evaluated once beforehand (2 x 10^6 balls, 64 MB), then tested per query;
 //   RangeFinder       candidate groups from the log-polar bounds, then their balls tested exactly.
 // The misses are counted on a 100 x 100 pattern of the same map (10^5 queries against all its balls).
+// Then the same on BeCOTS lattices (balls and beams, becots_lattice): BecotsLatticeQuery against LatticeQuery's
+// naive path and its automatic one (the general block path), 0 differences over 10^5 queries on 100 x 100 groups,
+// and the times on a 1000 x 1000 triangle-mesh slab (10^6 balls, 3 x 10^6 beams).
 #include <cstdio>
 #include <random>
 #include <vector>
 
 #include "bench_common.hpp"
+#include "steady/cots/becots_lattice.hpp"
 #include "steady/cots/becots_range.hpp"
+#include "steady/query/becots_query.hpp"
 
 using namespace steady;
 
@@ -32,6 +37,67 @@ BecotsRangeFinder pattern(const BecotsMap& map, int n) {
   return BecotsRangeFinder(map, {{map.map(0.25 * step, 0.25 * step), 0.2 * spacing},
                                  {map.map(0.75 * step, 0.6 * step), 0.15 * spacing}},
                            n, n, step, step);
+}
+
+// Queries around the lattice's balls: up to two ball spacings away, radii up to one spacing.
+std::vector<Ball> queries_around(const Lattice& lattice, int count, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u01(0.0, 1.0), unit(-1.0, 1.0);
+  std::vector<Ball> out;
+  for (int q = 0; q < count; ++q) {
+    const Ball e = lattice.ball(lattice.ball_id(static_cast<std::int64_t>(u01(rng) * lattice.ball_count())));
+    out.push_back({e.center + Vec3(unit(rng), unit(rng), unit(rng)) * (10.0 * e.radius), 5.0 * e.radius * u01(rng)});
+  }
+  return out;
+}
+
+bool lattices(const BecotsMap& map, bool long_run) {
+  bool ok = true;
+  {
+    const Lattice lattice = becots_lattice(map, becots_connectivity("triangle"), {100, 100, 1}, 0.0015, 0.0, 0.6);
+    const LatticeQuery lq(lattice);
+    const BecotsLatticeQuery fast(lattice, map);
+    const int count = long_run ? 1000000 : 100000;
+    long differ = 0, hits = 0;
+    for (const Ball& q : queries_around(lattice, count, 3)) {
+      const BallQueryResult a = fast.query_ball(q), b = lq.query_ball(q, QueryMethod::Naive);
+      differ += a.balls != b.balls || a.beams != b.beams;
+      hits += static_cast<long>(b.balls.size() + b.beams.size());
+    }
+    std::printf("100 x 100 triangle-mesh BeCOTS slab (%lld balls, %lld beams): %d queries, %ld elements hit, %ld "
+                "queries differing from naive\n",
+                static_cast<long long>(lattice.ball_count()), static_cast<long long>(lattice.beam_count()), count, hits,
+                differ);
+    ok = ok && differ == 0;
+  }
+  const Lattice lattice = becots_lattice(map, becots_connectivity("triangle"), {1000, 1000, 1}, 0.00015, 0.0, 0.6);
+  const LatticeQuery lq(lattice);
+  const BecotsLatticeQuery fast(lattice, map);
+  const std::vector<Ball> queries = queries_around(lattice, 1000, 4);
+  long fast_hits = 0, auto_hits = 0, naive_hits = 0;
+  const double t_fast = bench::median_seconds(5, [&] {
+    fast_hits = 0;
+    for (const Ball& q : queries) fast_hits += static_cast<long>(fast.query_ball(q).balls.size());
+  }) / queries.size();
+  const double t_auto = bench::seconds_of([&] {
+    for (const Ball& q : queries) auto_hits += static_cast<long>(lq.query_ball(q, QueryMethod::Auto).balls.size());
+  }) / queries.size();
+  const int naive_count = long_run ? 20 : 5;
+  long naive_fast_hits = 0;
+  const double t_naive = bench::seconds_of([&] {
+    for (int q = 0; q < naive_count; ++q)
+      naive_hits += static_cast<long>(lq.query_ball(queries[q], QueryMethod::Naive).balls.size());
+  }) / naive_count;
+  for (int q = 0; q < naive_count; ++q) naive_fast_hits += static_cast<long>(fast.query_ball(queries[q]).balls.size());
+  std::printf("1000 x 1000 triangle-mesh BeCOTS slab (%lld balls, %lld beams), seconds per query, 1 thread:\n",
+              static_cast<long long>(lattice.ball_count()), static_cast<long long>(lattice.beam_count()));
+  std::printf("  %-24s %12.3e  (%d queries)\n", "LatticeQuery naive", t_naive, naive_count);
+  std::printf("  %-24s %12.3e  (%zu queries, plan: %s)\n", "LatticeQuery auto", t_auto, queries.size(),
+              lq.plan().describe().c_str());
+  std::printf("  %-24s %12.3e  (%zu queries)\n", "BecotsLatticeQuery", t_fast, queries.size());
+  std::printf("  speed-up: %.0fx over naive, %.0fx over auto; same balls hit: %s\n", t_naive / t_fast, t_auto / t_fast,
+              fast_hits == auto_hits && naive_hits == naive_fast_hits ? "yes" : "NO");
+  return ok && fast_hits == auto_hits && naive_hits == naive_fast_hits;
 }
 
 }  // namespace
@@ -94,5 +160,6 @@ int main(int argc, char** argv) {
   std::printf("  %-18s %12.3e  (%zu queries, %ld hits)\n", "RangeFinder", fast, queries.size(), fast_hits);
   std::printf("  speed-up: %.0fx over naive (lazy), %.0fx over naive (stored); same hits: %s\n", lazy / fast,
               stored_time / fast, lazy_hits == lazy_fast_hits && stored_hits == stored_fast_hits ? "yes" : "NO");
-  return lazy_hits == lazy_fast_hits && stored_hits == stored_fast_hits ? 0 : 1;
+  const bool patterns_ok = lazy_hits == lazy_fast_hits && stored_hits == stored_fast_hits;
+  return patterns_ok && lattices(map, long_run) ? 0 : 1;
 }
