@@ -4,12 +4,15 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
+
 #include "convert.hpp"
 #include "steady/cots/becots_lattice.hpp"
 #include "steady/cots/becots_map.hpp"
 #include "steady/cots/becots_range.hpp"
 #include "steady/cots/becots_sums.hpp"
 #include "steady/cots/cots_map.hpp"
+#include "steady/query/becots_query.hpp"
 
 namespace steadypy {
 
@@ -366,7 +369,39 @@ void bind_becots_lattice(py::module_& m) {
       "nodes' radii. An ordinary steady brick: every query, property and output applies.");
 }
 
+void bind_becots_lattice_query(py::module_& m) {
+  // Holds the lattice (keep_alive) because the query refers to it.
+  py::class_<steady::BecotsLatticeQuery>(m, "BecotsLatticeQuery", R"doc(
+Ball queries on a BeCOTS lattice (made by becots_lattice on `map`) through the map-level BeCOTS RangeFinder: per
+layer, in time independent of the counts.)doc")
+      .def(py::init<const steady::Lattice&, const BecotsMap&>(), py::arg("lattice"), py::arg("map"),
+           py::keep_alive<1, 2>())
+      .def(
+          "query_ball",
+          [](const steady::BecotsLatticeQuery& q, py::handle center, double radius) {
+            if (!(radius >= 0.0) || !std::isfinite(radius)) value_error("radius", "must be a finite number >= 0");
+            steady::BallQueryResult r;
+            const Ball ball{to_vec3(center, "center"), radius};
+            {
+              py::gil_scoped_release release;
+              r = q.query_ball(ball);
+            }
+            return py::make_tuple(py::array_t<std::int64_t>(r.balls.size(), r.balls.data()),
+                                  py::array_t<std::int64_t>(r.beams.size(), r.beams.data()));
+          },
+          py::arg("center"), py::arg("radius"),
+          "(ball_indices, beam_indices): sorted indices of exactly the elements meeting the closed ball, as "
+          "Lattice.query_ball.")
+      .def(
+          "candidate_groups",
+          [](const steady::BecotsLatticeQuery& q, py::handle center, double radius) {
+            return q.candidate_groups({to_vec3(center, "center"), radius});
+          },
+          py::arg("center"), py::arg("radius"));
+}
+
 void bind_cots(py::module_& m) {
+  bind_becots_lattice_query(m);
   bind_cots_map(m);
   bind_becots_map(m);
   bind_becots_range(m);

@@ -250,3 +250,18 @@ def test_becots_stack_properties_use_the_closed_form_sums():
     assert fast["volume"] == pytest.approx(brute["volume"], rel=1e-10)
     assert fast["area"] == pytest.approx(brute["area"], rel=1e-10)
     assert np.abs(np.asarray(fast["centroid"]) - np.asarray(brute["centroid"])).max() < 1e-10
+
+
+def test_becots_lattice_query_equals_the_lattice_query(rng):
+    m = sl.BecotsMap(*becots_corners()).unbent().bent(0.5)
+    lat = sl.becots_lattice(m, "triangle", (30, 20, 1), 0.004, beam_ratio=0.6)
+    q = sl.BecotsLatticeQuery(lat, m)
+    centers, radii = lat.balls()
+    for _ in range(60):
+        c = centers[rng.integers(len(radii))] + rng.uniform(-0.05, 0.05, 3)
+        r = rng.uniform(0, 0.04)
+        fast, naive = q.query_ball(c, r), lat.query_ball(c, r, method="naive")
+        assert np.array_equal(fast[0], naive[0]) and np.array_equal(fast[1], naive[1])
+        assert q.candidate_groups(c, r) < 600
+    with pytest.raises(ValueError, match="lattice"):
+        sl.BecotsLatticeQuery(lat, sl.BecotsMap(*becots_corners()))
