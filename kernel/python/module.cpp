@@ -19,6 +19,7 @@ void bind_properties(py::module_& m);
 void bind_presets(py::module_& m);
 void bind_mesh(py::module_& m);
 void bind_slices(py::module_& m);
+void bind_cots(py::module_& m);
 }  // namespace steadypy
 
 PYBIND11_MODULE(steadylattice, m) {
@@ -50,4 +51,5 @@ PYBIND11_MODULE(steadylattice, m) {
   steadypy::bind_presets(m);
   steadypy::bind_mesh(m);
   steadypy::bind_slices(m);
+  steadypy::bind_cots(m);
 }

@@ -9,7 +9,7 @@ import sys
 
 OCC_OR_CGAL = re.compile(r'#\s*include\s*[<"]([A-Za-z0-9_]+\.hxx|CGAL/[^>"]+|Standard_[^>"]+)[>"]')
 INCLUDE = re.compile(r'#\s*include\s*"([^"]+)"')
-FAMILIES_WITHOUT_OCC = ("core", "lattice", "query", "properties", "mesh")
+FAMILIES_WITHOUT_OCC = ("core", "cots", "lattice", "query", "properties", "mesh")
 
 
 def public_headers(include_dir):

@@ -15,6 +15,12 @@
 #include "steady/core/tolerance.hpp"
 #include "steady/core/vec.hpp"
 
+#include "steady/cots/becots_lattice.hpp"
+#include "steady/cots/becots_map.hpp"
+#include "steady/cots/becots_range.hpp"
+#include "steady/cots/becots_sums.hpp"
+#include "steady/cots/cots_map.hpp"
+
 #include "steady/lattice/beam_frustum.hpp"
 #include "steady/lattice/broad_phase.hpp"
 #include "steady/lattice/convex_distance.hpp"
@@ -28,6 +34,7 @@
 #include "steady/lattice/steady_brick_layout.hpp"
 #include "steady/lattice/table_layout.hpp"
 
+#include "steady/query/becots_query.hpp"
 #include "steady/query/block_bounds.hpp"
 #include "steady/query/clean_check.hpp"
 #include "steady/query/filtered_lattice.hpp"
