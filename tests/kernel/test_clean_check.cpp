@@ -101,7 +101,9 @@ TEST(BroadPhase, GridFindsExactlyTheOverlappingPairs) {
       const Vec3 c = random_vec(rng, 10.0);
       // Mostly small boxes, a few huge ones and some flat ones.
       const double s = (i % 97 == 0) ? 8.0 : 0.2 + 0.8 * u01(rng);
-      Vec3 e{s * u01(rng), s * u01(rng), s * u01(rng)};  // braces: drawn left to right by every compiler
+      // One draw per statement, in GCC's order (last argument first): the sample is the same whatever compiles it.
+      const double ez = s * u01(rng), ey = s * u01(rng), ex = s * u01(rng);
+      Vec3 e(ex, ey, ez);
       if (i % 13 == 0) e.z = 0.0;
       boxes.push_back({c - e, c + e});
     }

@@ -45,10 +45,12 @@ inline Lattice strut_lattice(std::mt19937_64& rng, StepKind kind, Counts counts,
       }
       case StepKind::General: {
         // One draw per statement: the order in which a call's arguments are evaluated is up to the compiler
-        // (GCC and clang differ), and the sample must be the same whatever builds the tests.
-        const double angle = 0.04 * (2 * u01(rng) - 1);
-        const Vec3 axis = random_unit(rng), center = random_vec(rng, 1.0);
+        // (GCC and clang differ), and the sample must be the same whatever builds the tests. The order is GCC's
+        // (last argument first), which the tests' expectations were measured with.
         const double scale = std::exp(0.02 * (2 * u01(rng) - 1));
+        const Vec3 center = random_vec(rng, 1.0);
+        const Vec3 axis = random_unit(rng);
+        const double angle = 0.04 * (2 * u01(rng) - 1);
         steps[a] = Similarity::swirl(angle, axis, center, scale) * Similarity::translation(e[a]);
         break;
       }
@@ -57,9 +59,10 @@ inline Lattice strut_lattice(std::mt19937_64& rng, StepKind kind, Counts counts,
   d.u = {steps[0]};
   d.v = {steps[1]};
   d.w = {steps[2]};
+  const double scale = 0.5 + 2.0 * u01(rng);  // drawn in GCC's order too (see above)
+  const Vec3 turn_point = random_vec(rng, 2.0);
+  const Vec3 turn_axis = random_unit(rng);
   const double turn = u01(rng) * 3.0;
-  const Vec3 turn_axis = random_unit(rng), turn_point = random_vec(rng, 2.0);
-  const double scale = 0.5 + 2.0 * u01(rng);
   d.placement = Similarity::rotation(turn, turn_axis, turn_point) * Similarity::dilation(scale, Vec3(0.0));
   return Lattice(std::move(d));
 }
