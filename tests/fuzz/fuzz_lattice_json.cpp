@@ -30,7 +30,7 @@ void check_loaded(const Lattice& lattice) {
   for (std::int64_t x : {std::int64_t(0), lattice.ball_count() - 1})
     if (!finite(lattice.ball(lattice.ball_id(x)))) fuzz::finding("ball " + std::to_string(x) + " is not finite");
   for (std::int64_t x : {std::int64_t(0), lattice.beam_count() - 1}) {
-    if (x < 0) break;
+    if (lattice.beam_count() == 0) break;
     const BeamGeometry g = lattice.beam(lattice.beam_id(x));
     if (!finite(g.start) || !finite(g.end)) fuzz::finding("beam " + std::to_string(x) + " is not finite");
   }
