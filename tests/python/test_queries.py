@@ -1,6 +1,7 @@
 """Queries from Python against numpy brute force over balls() and beams(): ball interference (every
 method), point membership, distance, rays, voxels; filters and filtered lattices; bad input."""
 import math
+import os
 
 import numpy as np
 import pytest
@@ -203,3 +204,21 @@ def test_bad_input():
         sl.IndexStencil(np.ones((2, 2), bool))
     with pytest.raises(ValueError, match="body"):
         lat.filtered(sl.InsideBody(lambda p: np.ones(len(p) + 1, bool))).ball_mask()
+
+
+def test_a_steep_dilation_that_loads_can_be_queried():
+    """Found by the lattice-file fuzzer (tests/fuzz/findings/json_query_power_out_of_range.json): a lattice whose U
+    step scales by e^6.01 loads, but its queries tabulated step powers past its groups (the neighbour margin), where
+    a translation leaves the supported range, and refused ("similarity: its translation: is 1.8e+12 ..."). The
+    tables now stop short of such powers; every element is still found, on every query path."""
+    path = os.path.join(os.path.dirname(__file__), "..", "fuzz", "findings", "json_query_power_out_of_range.json")
+    with open(path) as f:
+        lat = sl.Lattice.from_json(f.read())
+    brute = Brute(lat)
+    plan = lat.query_plan()
+    methods = METHODS + (["slabs", "slabs-paper"] if plan["slabs"] else []) + (["constant"] if plan["constant"] else [])
+    centers, radii = lat.balls()
+    for center, radius in [(c, 2.0 * r) for c, r in zip(centers[::5], radii[::5])] + [((0, 0, 0), 1.0)]:
+        for m in methods:
+            check_query(lat, brute, center, radius, m)
+    assert np.all(lat.contains(centers))
