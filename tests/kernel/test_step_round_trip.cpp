@@ -16,6 +16,9 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
+
+#include <unistd.h>
 
 #include "steady/brep/brep_io.hpp"
 #include "steady/brep/lattice_part.hpp"
@@ -67,8 +70,11 @@ void expect_same_solids(const TopoDS_Shape& written, const TopoDS_Shape& back, c
   EXPECT_NEAR(vb / va, 1.0, 1e-6) << what << ": written " << va << ", read back " << vb;
 }
 
+// Named after the process too: two test runs on one machine (two checkouts, a sanitizer build) must not share or
+// remove each other's files.
 std::string temp_path(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / ("steady_round_trip_" + name)).string();
+  return (std::filesystem::temp_directory_path() /
+          ("steady_round_trip_" + std::to_string(::getpid()) + "_" + name)).string();
 }
 
 // The main job's twisted, tapered octet (12 crowded beams a node) clipped by a box around its middle: interior
