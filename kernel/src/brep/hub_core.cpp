@@ -1284,13 +1284,22 @@ void check_core_volume(const HubCore& core, const std::vector<CoreStump>& stumps
   fail_input("hub", os.str());
 }
 
-std::shared_ptr<const HubCore> build_unchecked_core(const std::vector<CoreStump>& stumps, CoreKind kind,
-                                                    const std::vector<double>& collars) {
-  if (kind == CoreKind::Hull) return build_envelope_core(stumps, kind, collars);
+// The core, once check_core_volume passed it.
+std::shared_ptr<const HubCore> checked(std::shared_ptr<const HubCore> core, const std::vector<CoreStump>& stumps) {
+  check_core_volume(*core, stumps);
+  return core;
+}
+
+}  // namespace
+
+std::shared_ptr<const HubCore> build_hub_core(const std::vector<CoreStump>& stumps, CoreKind kind,
+                                              const std::vector<double>& collars) {
+  if (stumps.empty()) unsupported("a hub core needs stumps");
+  if (kind == CoreKind::Hull) return checked(build_envelope_core(stumps, kind, collars), stumps);
   // Transversal stumps of one end radius: the same exact construction, no Boolean; else (or where a stump is
   // swallowed up to its collar, or the seam finds no room) the Fuse.
   // Tangent exit caps (beams exactly as far apart as their caps are wide) give cusps the arrangement builds but
-  // OpenCASCADE refuses as self-intersecting wires: such a core is checked and given to the Fuse.
+  // OpenCASCADE refuses as self-intersecting wires: such a core, or one off its exact volume, goes to the Fuse.
   if (share_end_radius(stumps)) {
     try {
       std::shared_ptr<const HubCore> core = build_envelope_core(stumps, kind, collars);
@@ -1302,22 +1311,12 @@ std::shared_ptr<const HubCore> build_unchecked_core(const std::vector<CoreStump>
   // cones stay apart (its collar disks then surely come out untouched); the core reports the ones it used in
   // collar_position.
   try {
-    return build_transversal_core(stumps, collars);
+    return checked(build_transversal_core(stumps, collars), stumps);
   } catch (const InvalidInput&) {
     const std::vector<double> apart = place_collars(stumps, kind, kMaxCollarPosition);
     if (apart == collars) throw;
-    return build_transversal_core(stumps, apart);
+    return checked(build_transversal_core(stumps, apart), stumps);
   }
-}
-
-}  // namespace
-
-std::shared_ptr<const HubCore> build_hub_core(const std::vector<CoreStump>& stumps, CoreKind kind,
-                                              const std::vector<double>& collars) {
-  if (stumps.empty()) unsupported("a hub core needs stumps");
-  std::shared_ptr<const HubCore> core = build_unchecked_core(stumps, kind, collars);
-  check_core_volume(*core, stumps);
-  return core;
 }
 
 }  // namespace steady
