@@ -7,6 +7,7 @@
 
 #include "cots/cots_math.hpp"
 #include "steady/core/errors.hpp"
+#include "cots/cots_grid.hpp"
 #include "steady/core/numeric_range.hpp"
 
 namespace steady {
@@ -70,10 +71,6 @@ bool clamp_into(double* value, double lo, double hi) {
   return true;
 }
 
-void require_grid(int nu, int nv) {
-  if (nu < 1) fail_input("nu", "must be >= 1 (got " + std::to_string(nu) + ")");
-  if (nv < 1) fail_input("nv", "must be >= 1 (got " + std::to_string(nv) + ")");
-}
 }  // namespace
 
 void BecotsMap::set_axis(const Vec3& axis) {
@@ -243,13 +240,7 @@ std::vector<CotsPreimage> BecotsMap::inverse(const Vec3& q, const ParameterBox& 
 
 std::vector<std::array<int, 2>> BecotsMap::tiles_of(const Vec3& q, int nu, int nv) const {
   require_grid(nu, nv);
-  std::vector<std::array<int, 2>> tiles;
-  for (const CotsPreimage& p : inverse(q)) {
-    const int i = std::min(static_cast<int>(std::floor(p.uv.x * nu)), nu - 1);
-    const int j = std::min(static_cast<int>(std::floor(p.uv.y * nv)), nv - 1);
-    tiles.push_back({i, j});
-  }
-  return tiles;
+  return tiles_of_preimages(inverse(q), nu, nv);
 }
 
 Similarity BecotsMap::field(double x, double y) const {

@@ -7,6 +7,7 @@
 
 #include "cots/cots_math.hpp"
 #include "steady/core/errors.hpp"
+#include "cots/cots_grid.hpp"
 #include "steady/core/numeric_range.hpp"
 
 namespace steady {
@@ -28,10 +29,6 @@ void require_branch(int k, const char* name) {
     fail_input(name, "must be within +-" + std::to_string(kCotsMaxBranch) + " turns (got " + std::to_string(k) + ")");
 }
 
-void require_grid(int nu, int nv) {
-  if (nu < 1) fail_input("nu", "must be >= 1 (got " + std::to_string(nu) + ")");
-  if (nv < 1) fail_input("nv", "must be >= 1 (got " + std::to_string(nv) + ")");
-}
 
 // Refuses corners where two adjacent ones coincide (the multipliers |cd|/|ab|, |bc|/|ad| would be 0 or infinite).
 void require_distinct_adjacent(const Complex (&p)[4]) {
@@ -187,15 +184,24 @@ std::vector<CotsPreimage> CotsMap::inverse(const Vec2& q, const ParameterBox& bo
   return found;
 }
 
-std::vector<std::array<int, 2>> CotsMap::tiles_of(const Vec2& q, int nu, int nv) const {
-  require_grid(nu, nv);
+void require_grid(int nu, int nv) {
+  if (nu < 1) fail_input("nu", "must be >= 1 (got " + std::to_string(nu) + ")");
+  if (nv < 1) fail_input("nv", "must be >= 1 (got " + std::to_string(nv) + ")");
+}
+
+std::vector<std::array<int, 2>> tiles_of_preimages(const std::vector<CotsPreimage>& preimages, int nu, int nv) {
   std::vector<std::array<int, 2>> tiles;
-  for (const CotsPreimage& p : inverse(q)) {
+  for (const CotsPreimage& p : preimages) {
     const int i = std::min(static_cast<int>(std::floor(p.uv.x * nu)), nu - 1);
     const int j = std::min(static_cast<int>(std::floor(p.uv.y * nv)), nv - 1);
     tiles.push_back({i, j});
   }
   return tiles;
+}
+
+std::vector<std::array<int, 2>> CotsMap::tiles_of(const Vec2& q, int nu, int nv) const {
+  require_grid(nu, nv);
+  return tiles_of_preimages(inverse(q), nu, nv);
 }
 
 Similarity2 CotsMap::field(double x, double y) const {
