@@ -1,12 +1,26 @@
 #pragma once
 // Numerical references for the COTS / BeCOTS tests, independent of the closed forms under test: Gauss-Legendre
-// quadrature, derivatives by a five-point stencil, and a line that prints a measured figure.
+// quadrature, derivatives by a five-point stencil, a line that prints a measured figure, and the text of a refusal.
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <string>
 #include <vector>
 
+#include "steady/core/errors.hpp"
+
 namespace cots_test {
+
+// The message of the InvalidInput that f throws, or "(no error)".
+template <class F>
+std::string message_of(F&& f) {
+  try {
+    f();
+  } catch (const steady::InvalidInput& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
 
 constexpr double kPi = 3.14159265358979323846;
 

@@ -43,16 +43,6 @@ double numerical_area(const BecotsMap& m) {
   });
 }
 
-template <class F>
-std::string message_of(F&& f) {
-  try {
-    f();
-  } catch (const InvalidInput& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
 // A field with apex, axis and windings from the generator (the maps the tests build corners from).
 BecotsMap random_field(std::mt19937_64& rng, double max_angle) {
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
@@ -313,7 +303,7 @@ TEST(BecotsMap, NearCylindersStayAccurateAndExactCylindersAreRefused) {
     const double t = x * wu + y * wv;
     return Vec3(1.3 * std::cos(t), 1.3 * std::sin(t), x * tu + y * tv);
   };
-  const std::string refused = message_of([&] { BecotsMap(helix(0, 0), helix(0, 1), helix(1, 1), helix(1, 0)); });
+  const std::string refused = cots_test::message_of([&] { BecotsMap(helix(0, 0), helix(0, 1), helix(1, 1), helix(1, 0)); });
   EXPECT_NE(refused.find("corners A, B, C, D"), std::string::npos) << refused;
   EXPECT_NE(refused.find("axis"), std::string::npos) << refused;
   // Nearly a cylinder: a small dilation about an apex far down the axis. The map is evaluated without the apex, and
@@ -421,22 +411,22 @@ TEST(BecotsMap, ContinuousAcrossTheCoplanarThreshold) {
 TEST(BecotsMap, BadInputNamesTheCorners) {
   const double nan = std::nan("");
   const Vec3 a{0, 0, 0}, b{0.1, 1, 0.2}, c{1.3, 1.2, -0.3}, d{1, 0, 0.1};
-  EXPECT_NE(message_of([&] { BecotsMap({nan, 0, 0}, b, c, d); }).find("corner A"), std::string::npos);
-  EXPECT_NE(message_of([&] { BecotsMap(a, b, {0, INFINITY, 0}, d); }).find("corner C"), std::string::npos);
-  EXPECT_NE(message_of([&] { BecotsMap(a, a, c, d); }).find("corners A, B"), std::string::npos);
-  EXPECT_NE(message_of([&] { BecotsMap(a, b, c, a); }).find("corners A, D"), std::string::npos);
-  EXPECT_NE(message_of([&] { BecotsMap(a, {1, 1, 1}, {3, 3, 3}, {2, 2, 2}); }).find("one line"), std::string::npos);
+  EXPECT_NE(cots_test::message_of([&] { BecotsMap({nan, 0, 0}, b, c, d); }).find("corner A"), std::string::npos);
+  EXPECT_NE(cots_test::message_of([&] { BecotsMap(a, b, {0, INFINITY, 0}, d); }).find("corner C"), std::string::npos);
+  EXPECT_NE(cots_test::message_of([&] { BecotsMap(a, a, c, d); }).find("corners A, B"), std::string::npos);
+  EXPECT_NE(cots_test::message_of([&] { BecotsMap(a, b, c, a); }).find("corners A, D"), std::string::npos);
+  EXPECT_NE(cots_test::message_of([&] { BecotsMap(a, {1, 1, 1}, {3, 3, 3}, {2, 2, 2}); }).find("one line"), std::string::npos);
   // A parallelogram lifted at one corner: a family of cones passes through it, the axis is undetermined.
-  const std::string axis = message_of([&] { BecotsMap(a, {0, 1, 0}, {1, 1, 1e-3}, {1, 0, 0}); });
+  const std::string axis = cots_test::message_of([&] { BecotsMap(a, {0, 1, 0}, {1, 1, 1e-3}, {1, 0, 0}); });
   EXPECT_NE(axis.find("corners A, B, C, D"), std::string::npos) << axis;
   EXPECT_NE(axis.find("axis"), std::string::npos) << axis;
   const BecotsMap m(a, b, c, d);
-  EXPECT_NE(message_of([&] { m.bent(0.0); }).find("beta"), std::string::npos);
-  EXPECT_NE(message_of([&] { m.bent(kPi); }).find("beta"), std::string::npos);
+  EXPECT_NE(cots_test::message_of([&] { m.bent(0.0); }).find("beta"), std::string::npos);
+  EXPECT_NE(cots_test::message_of([&] { m.bent(kPi); }).find("beta"), std::string::npos);
   EXPECT_THROW(m.inverse({nan, 0, 0}), InvalidInput);
   EXPECT_THROW(m.raised(nan), InvalidInput);
   EXPECT_THROW(BecotsMap::from_field({0, 0, 0}, {0, 0, 0}, {1, 0, 0}, {0.1, 0.2}, {0.3, 0.4}), InvalidInput);
-  EXPECT_NE(message_of([&] { BecotsMap::from_field({0, 0, 0}, {0, 0, 1}, {0, 0, 2}, {0.1, 0.2}, {0.3, 0.4}); })
+  EXPECT_NE(cots_test::message_of([&] { BecotsMap::from_field({0, 0, 0}, {0, 0, 1}, {0, 0, 2}, {0.1, 0.2}, {0.3, 0.4}); })
                 .find("axis"),
             std::string::npos);
   // A flat parallelogram has no apex to bend about.

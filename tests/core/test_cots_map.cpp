@@ -46,16 +46,6 @@ double numerical_area(const CotsMap& m, double x0 = 0.0, double x1 = 1.0, double
          });
 }
 
-template <class F>
-std::string message_of(F&& f) {
-  try {
-    f();
-  } catch (const InvalidInput& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
 TEST(CotsMap, P1CornersFixedPointAndMultipliers) {
   const CotsMap m(kA, kB, kC, kD);
   EXPECT_LT(dist(m.map(0, 0), kA), 1e-14);
@@ -375,23 +365,23 @@ TEST(CotsMap, BranchesFromCornersRecoverWoundSpirals) {
 
 TEST(CotsMap, BadInputNamesTheCorners) {
   const double nan = std::nan("");
-  EXPECT_NE(message_of([&] { CotsMap({nan, 0}, kB, kC, kD); }).find("corner a"), std::string::npos);
-  EXPECT_NE(message_of([&] { CotsMap(kA, kB, kC, {1, INFINITY}); }).find("corner d"), std::string::npos);
-  EXPECT_NE(message_of([&] { CotsMap(kA, kA, kC, kD); }).find("corners a, b"), std::string::npos);
-  EXPECT_NE(message_of([&] { CotsMap(kA, kB, kC, kC); }).find("corners c, d"), std::string::npos);
-  EXPECT_NE(message_of([&] { CotsMap(kA, kA, kA, kA); }).find("same point"), std::string::npos);
+  EXPECT_NE(cots_test::message_of([&] { CotsMap({nan, 0}, kB, kC, kD); }).find("corner a"), std::string::npos);
+  EXPECT_NE(cots_test::message_of([&] { CotsMap(kA, kB, kC, {1, INFINITY}); }).find("corner d"), std::string::npos);
+  EXPECT_NE(cots_test::message_of([&] { CotsMap(kA, kA, kC, kD); }).find("corners a, b"), std::string::npos);
+  EXPECT_NE(cots_test::message_of([&] { CotsMap(kA, kB, kC, kC); }).find("corners c, d"), std::string::npos);
+  EXPECT_NE(cots_test::message_of([&] { CotsMap(kA, kA, kA, kA); }).find("same point"), std::string::npos);
   // Collinear corners: a flat parallelogram and a flat spiral quad collapse to a curve.
-  const std::string flat = message_of([&] { CotsMap({0, 0}, {1, 1}, {3, 3}, {2, 2}); });
+  const std::string flat = cots_test::message_of([&] { CotsMap({0, 0}, {1, 1}, {3, 3}, {2, 2}); });
   EXPECT_NE(flat.find("corners a, b, c, d"), std::string::npos) << flat;
   EXPECT_NE(flat.find("collapses to a curve"), std::string::npos) << flat;
-  EXPECT_NE(message_of([&] { CotsMap({0, 0}, {1, 0}, {3, 0}, {2, 0}); }).find("collapses"), std::string::npos);
-  EXPECT_NE(message_of([&] { CotsMap::from_spiral({1, 0}, {0, 0}, {0.2, 0.1}, {0.4, 0.2}); }).find("collapses"),
+  EXPECT_NE(cots_test::message_of([&] { CotsMap({0, 0}, {1, 0}, {3, 0}, {2, 0}); }).find("collapses"), std::string::npos);
+  EXPECT_NE(cots_test::message_of([&] { CotsMap::from_spiral({1, 0}, {0, 0}, {0.2, 0.1}, {0.4, 0.2}); }).find("collapses"),
             std::string::npos);
   // A full turn of U brings d back onto a (and c onto b).
-  EXPECT_NE(message_of([&] { CotsMap::from_spiral({1, 0}, {0, 0}, {0.0, 2 * kPi}, {0.4, 0.2}); }).find("coincide"),
+  EXPECT_NE(cots_test::message_of([&] { CotsMap::from_spiral({1, 0}, {0, 0}, {0.0, 2 * kPi}, {0.4, 0.2}); }).find("coincide"),
             std::string::npos);
   // The symmetric bow-tie is two quarter and half turns about one centre: its range is an arc.
-  EXPECT_NE(message_of([&] { CotsMap({0, 0}, {1, 1}, {0, 1}, {1, 0}); }).find("collapses"), std::string::npos);
+  EXPECT_NE(cots_test::message_of([&] { CotsMap({0, 0}, {1, 1}, {0, 1}, {1, 0}); }).find("collapses"), std::string::npos);
   const CotsMap m(kA, kB, kC, kD);
   EXPECT_THROW(m.inverse({nan, 0.0}), InvalidInput);
   EXPECT_THROW(m.tiles_of({0.5, 0.5}, 0, 3), InvalidInput);
