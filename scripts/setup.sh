@@ -21,8 +21,9 @@ PACKAGES=(
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   # the voxel baseline of the benchmarks (OpenVDB)
   libopenvdb-dev
-  # independent readers in the tests: XML schema validation of 3MF beam lattices
-  libxml2-utils
+  # independent readers in the tests: XML schema validation of 3MF beam lattices; gmsh, which meshes our STEP
+  # parts into tetrahedra for analysis (docs/fea.md)
+  libxml2-utils gmsh python3-gmsh
   # a real FreeCAD window without a display; peak-memory measurement
   xvfb xauth time
   # the reliability build (scripts/test.sh --sanitizers, docs/reliability.md): clang with its AddressSanitizer,

@@ -96,6 +96,8 @@ void fill_stats(const steady::TrimStats& s, py::dict& d) {
   d["relaid_reason"] = s.relaid_reason;
   d["union_through_pores"] = s.union_through_pores;
   d["pores_reason"] = s.pores_reason;
+  d["skin_pieces"] = s.skin_pieces;
+  d["skin_pieces_volume"] = s.skin_pieces_volume;
   d["faces"] = s.faces;
   d["volume"] = s.volume;
   d["boolean_seconds"] = s.boolean_seconds;
@@ -172,25 +174,35 @@ void bind_brep(py::module_& m) {
       "write_step",
       [](const Lattice& lat, const std::string& path, const py::object& body, const std::string& policy, double skin,
          const std::string& dangling, const std::string& lattice_name, const std::string& skin_name,
-         const py::object& lattice_color, const py::object& skin_color, const py::object& progress) {
+         const py::object& lattice_color, const py::object& skin_color, const py::object& progress,
+         const py::object& stats) {
         const steady::LatticePartRequest request = part_request(body, policy, skin, dangling);
+        require_stats_target(stats);
         steady::StepNames names;
         names.lattice = lattice_name;
         names.skin = skin_name;
         names.lattice_color = to_color(lattice_color, "lattice_color");
         names.skin_color = to_color(skin_color, "skin_color");
+        steady::TrimStats trim;
         run_with_progress(progress, [&](steady::Progress& p) {
-          steady::write_lattice_step(path, steady::flatten(lat), request, names, p);
+          steady::write_lattice_step(path, steady::flatten(lat), request, names, p, &trim);
           return 0;
         });
+        if (!stats.is_none()) {
+          py::dict d = stats.cast<py::dict>();
+          fill_stats(trim, d);
+        }
       },
       py::arg("path"), py::arg("body") = py::none(), py::arg("policy") = "clip", py::arg("skin") = 0.0,
       py::arg("dangling") = "keep", py::arg("lattice_name") = "Lattice", py::arg("skin_name") = "Skin",
       py::arg("lattice_color") = py::make_tuple(0.85, 0.55, 0.20), py::arg("skin_color") = py::make_tuple(0.55, 0.65, 0.80),
-      py::arg("progress") = py::none(),
+      py::arg("progress") = py::none(), py::arg("stats") = py::none(),
       "Writes a STEP assembly: the lattice (trimmed to the inner offset when there is a skin) and the skin as two "
-      "named, coloured parts. progress: as for brep(); a cancelled call raises steadylattice.Cancelled and leaves "
-      "the file untouched (it is written only at the end).");
+      "named, coloured parts. Pieces of the trimmed lattice that hold no hub built whole (ends of beams and hubs cut "
+      "at the skin's inner wall, touching only the skin) are part of the skin, so the lattice part is one solid. "
+      "progress: as for brep(); a cancelled call raises steadylattice.Cancelled and leaves "
+      "the file untouched (it is written only at the end). stats: None or a dict, filled as by brep() (without "
+      "volume), with skin_pieces and skin_pieces_volume: the pieces given to the skin.");
   m.def(
       "brep_properties",
       [](const std::string& text) {

@@ -22,6 +22,7 @@
 
 #include "brep/brep_pieces.hpp"
 #include "steady/brep/brep_io.hpp"
+#include "steady/core/constants.hpp"
 #include "steady/core/errors.hpp"
 #include "steady/lattice/flat_lattice.hpp"
 #include "steady/lattice/lattice_io.hpp"
@@ -250,6 +251,34 @@ TEST(Trim, SkinUnitedWithLatticeMatchesClosedForm) {
   const TrimResult parts = trim_lattice(f, box(-0.7, 4.7), o);
   expect_valid_single_solid(parts.lattice, "lattice part");
   EXPECT_NEAR(shape_volume(parts.lattice) / grid_clip_volume(f, -0.4, 4.4), 1.0, 1e-7);
+}
+
+// With the skin apart (a STEP assembly), a piece of the lattice that holds no whole node goes to the skin. In a
+// cylinder of radius 10 with a skin of 1, a beam between two nodes in the skin (at radius 9.6, 60 degrees apart)
+// dips as a chord through the inner wall (radius 9): what lies inside is a piece touching only the skin.
+TEST(Trim, LoosePiecesOfTheLatticeGoToTheSkin) {
+  const double a = 9.6 * std::cos(kPi / 6), b = 9.6 * std::sin(kPi / 6);
+  const FlatLattice f = make_flat_lattice({{{0.0, 0.0, 5.0}, 1.0}, {{4.0, 0.0, 5.0}, 1.0},  // the lattice inside
+                                           {{a, -b, 5.0}, 0.3}, {{a, b, 5.0}, 0.3}},         // the chord's nodes
+                                          {{0, 1, 0.5, 0.5}, {2, 3, 0.3, 0.3}});
+  const TopoDS_Shape body = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 10.0, 10.0).Shape();
+  TrimOptions o;
+  o.skin = 1.0;
+  const TrimResult united = trim_lattice(f, body, o);
+  o.unite_skin = false;
+  const TrimResult apart = trim_lattice(f, body, o);
+  expect_valid_single_solid(apart.lattice, "lattice part");
+  expect_valid_single_solid(apart.skin, "skin part with the piece");
+  EXPECT_EQ(apart.stats.skin_pieces, 1);
+  // The chord's piece: the beam's cylinder where it lies inside radius 9, less than its part within +-b.
+  EXPECT_GT(apart.stats.skin_pieces_volume, 0.0);
+  EXPECT_LT(apart.stats.skin_pieces_volume, kPi * 0.3 * 0.3 * 2.0 * b);
+  // Shared faces, no overlap: the two parts add up to the united part.
+  const double lattice = shape_volume(apart.lattice), skin = shape_volume(apart.skin);
+  EXPECT_NEAR((lattice + skin) / shape_volume(united.part), 1.0, 1e-6);
+  const double balls = 4.0 / 3.0 * kPi * 2.0 + kPi * 0.25 * 4.0;  // balls and the whole beam: an upper bound
+  EXPECT_LT(lattice, balls);
+  EXPECT_GT(lattice, 4.0 / 3.0 * kPi * 2.0 - 1e-9);
 }
 
 // Brute-force membership in the lattice: a node ball, or the convex hull of a beam's two end balls (the union of

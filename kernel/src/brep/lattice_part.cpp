@@ -52,7 +52,7 @@ std::string lattice_part_brep(const FlatLattice& lattice, const LatticePartReque
 }
 
 void write_lattice_step(const std::string& path, const FlatLattice& lattice, const LatticePartRequest& request,
-                        const StepNames& names, Progress& progress) {
+                        const StepNames& names, Progress& progress, TrimStats* stats) {
   // Checked before the trim, which may take minutes.
   check_output_path(path);
   check_step_name(names.lattice, "lattice_name");
@@ -66,6 +66,7 @@ void write_lattice_step(const std::string& path, const FlatLattice& lattice, con
     Progress part(progress, kStepPartUnits);
     r = make_part(lattice, separate, part);
   }
+  if (stats) *stats = r.stats;
   std::vector<StepPart> parts = {{names.lattice, r.lattice, names.lattice_color, true}};
   if (!r.skin.IsNull()) parts.push_back({names.skin, r.skin, names.skin_color, true});
   {

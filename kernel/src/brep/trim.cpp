@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <chrono>
 #include <stdexcept>
+#include <unordered_set>
 
+#include "brep/loose_pieces.hpp"
 #include "brep/trim_phases.hpp"
 #include "steady/core/errors.hpp"
 #include "steady/query/clean_check.hpp"
@@ -149,7 +151,18 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
     shape = solids_from_faces(faces, part);
   }
   if (bodies.skin && !options.unite_skin) {
-    out.lattice = shape;
+    const auto pieces_clock = std::chrono::steady_clock::now();
+    std::unordered_set<const void*> interior_faces;
+    for (const TopoDS_Face& face : built.interior.faces) interior_faces.insert(face.TShape().get());
+    Progress checks_only(progress, 0);  // quick (a few small pieces): no share of the bar, but cancellable
+    const PartsApart apart = give_loose_pieces_to_skin(shape, out.skin, interior_faces, checks_only);
+    report(options, "trim: " + std::to_string(apart.pieces) + " loose pieces of the lattice given to the skin in " +
+                        std::to_string(seconds_since(pieces_clock)) + " s");
+    out.lattice = apart.lattice;
+    out.skin = apart.skin;
+    stats.skin_pieces = apart.pieces;
+    stats.skin_pieces_volume = apart.pieces_volume;
+    if (!apart.unfused_reason.empty()) report(options, "trim: loose pieces left beside the skin: " + apart.unfused_reason);
     out.part = compound_of({out.skin, out.lattice});
   } else {
     out.part = shape;

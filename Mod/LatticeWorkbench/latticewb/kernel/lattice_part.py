@@ -44,7 +44,15 @@ def part_brep(obj, report=None, stats=None):
 
 def write_step_assembly(obj, path, report=None):
     """STEP with the skin and the lattice as two named, coloured parts (the kernel's XCAF writer).
-    report(fraction) -> False cancels (steadylattice.Cancelled; the file is not written)."""
+    report(fraction) -> False cancels (steadylattice.Cancelled; the file is not written).
+    Returns the trim's stats (a dict; skin_pieces: pieces of the lattice that touch only the skin, written as part
+    of the skin so that the lattice part is one solid)."""
     lattice, body, policy, skin, dangling = kernel_request(obj)
+    stats = {}
     lattice.write_step(path, body, policy, skin, dangling, lattice_name=obj.Label + " lattice",
-                       skin_name=obj.Label + " skin", progress=report)
+                       skin_name=obj.Label + " skin", progress=report, stats=stats)
+    if stats.get("skin_pieces"):
+        FreeCAD.Console.PrintMessage(
+            "%s: %d pieces of the lattice (%.4g mm^3) touch only the skin; they are part of \"%s skin\" in %s\n"
+            % (obj.Label, stats["skin_pieces"], stats["skin_pieces_volume"], obj.Label, path))
+    return stats

@@ -33,8 +33,10 @@ struct StepNames {
 };
 
 // Writes a STEP assembly: the lattice (trimmed to the inner offset when there is a skin) and the skin as two
-// named, coloured parts (the lattice alone when there is no skin). Cancelled leaves the file untouched.
+// named, coloured parts (the lattice alone when there is no skin). Pieces of the trimmed lattice that hold no hub
+// built whole go to the skin part (TrimStats::skin_pieces). Cancelled leaves the file untouched. `stats`: where
+// given, how the trim went.
 void write_lattice_step(const std::string& path, const FlatLattice& lattice, const LatticePartRequest& request,
-                        const StepNames& names = {}, Progress& progress = no_progress());
+                        const StepNames& names = {}, Progress& progress = no_progress(), TrimStats* stats = nullptr);
 
 }  // namespace steady

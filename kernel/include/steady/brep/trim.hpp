@@ -60,6 +60,10 @@ struct TrimStats {
   std::int64_t holed_clusters = 0;        // with a skin: clusters glued to it by holes in its inner faces, no
                                           // Boolean (the others by a glued Fuse)
   std::int64_t core_hubs = 0, distinct_cores = 0, fused_cores = 0;  // crowded hubs built from cores, and the cores built
+  // With the skin apart (!unite_skin): pieces of the trimmed lattice holding no hub built whole (ends of beams and
+  // hubs cut at the inner wall, touching only the skin), given to the skin part, and their volume.
+  std::int64_t skin_pieces = 0;
+  double skin_pieces_volume = 0.0;
   bool relaid_out = false;                // the first attempt failed as a whole; a later one (every cut halfway,
                                           // or the spheres laid out the other way) made the part
   std::string relaid_reason;              //   why the earlier attempts failed
@@ -73,8 +77,8 @@ struct TrimStats {
 
 struct TrimResult {
   TopoDS_Shape part;     // the result: trimmed lattice, united with the skin when there is one and unite_skin
-  TopoDS_Shape lattice;  // when !unite_skin: the lattice trimmed to the inner offset
-  TopoDS_Shape skin;     // the skin, when there is one
+  TopoDS_Shape lattice;  // when !unite_skin: the lattice trimmed to the inner offset, without its loose pieces
+  TopoDS_Shape skin;     // the skin, when there is one (when !unite_skin: with the lattice's loose pieces)
   TrimStats stats;
 };
 
