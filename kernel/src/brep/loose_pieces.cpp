@@ -25,7 +25,7 @@ std::vector<TopoDS_Shape> solids_of(const TopoDS_Shape& shape) {
 
 // Whether `solid` holds a hub the trim built whole (inside the inner wall): one of its faces is one of theirs.
 // Deciding it from the geometry instead (a ball's centre classified in the solid, its distance to the faces) took
-// 40 s on the main job's lattice of 30,000 faces.
+// 40 s on the main job's lattice (3,759 faces); this takes milliseconds.
 bool holds_a_whole_hub(const TopoDS_Shape& solid, const std::unordered_set<const void*>& whole_hub_faces) {
   for (TopExp_Explorer e(solid, TopAbs_FACE); e.More(); e.Next())
     if (whole_hub_faces.count(e.Current().TShape().get())) return true;
