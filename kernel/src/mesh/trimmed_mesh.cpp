@@ -248,13 +248,19 @@ TriangleMesh trimmed_lattice_mesh(const FlatLattice& f, const MeshOptions& optio
   progress.set_total(100);
   MeshPlan plan;
   clock = std::chrono::steady_clock::now();
+  const TrimSurface surface(request.inner ? *request.inner : *request.body);
+  std::vector<Side> hubs;
   {
+    // Templates only for the hubs that are placed or hold a loop of a placed strip.
     Progress part(progress, 40);
-    plan = plan_lattice_mesh(f, options, part);
+    plan = plan_lattice_mesh(f, options, part, [&](const MeshPlan& p) {
+      hubs = surface.hubs(p);
+      return hubs_needed(p, hubs);
+    });
   }
   stats.plan_seconds = seconds_since(clock);
   clock = std::chrono::steady_clock::now();
-  const BandSides sides = classify_band(plan, request.inner ? *request.inner : *request.body);
+  const BandSides sides = surface.elements(plan, hubs);
   stats.inside_hubs = sides.inside_hubs, stats.crossing_hubs = sides.crossing_hubs, stats.outside_hubs = sides.outside_hubs;
   stats.classify_seconds = seconds_since(clock);
   progress.advance(10);
