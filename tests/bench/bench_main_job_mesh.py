@@ -50,9 +50,10 @@ def freecad_mesh_arrays(mesh):
 
 
 def checks(mesh):
-    pairs = mesh.getSelfIntersections() if mesh.hasSelfIntersections() else []
+    # each entry: two facet indices and the two ends of their intersection
+    pairs = {tuple(sorted(p[:2])) for p in mesh.getSelfIntersections()} if mesh.hasSelfIntersections() else set()
     return ("solid %s, non-manifold %s, %d component(s), FreeCAD's approximate self-intersection test: %d pair(s)"
-            % (mesh.isSolid(), mesh.hasNonManifolds(), mesh.countComponents(), len(pairs) // 2))
+            % (mesh.isSolid(), mesh.hasNonManifolds(), mesh.countComponents(), len(pairs)))
 
 
 class Ours:
