@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -58,9 +60,12 @@ std::vector<Vec3> circle_points(const Vec3& direction, double position, double r
 // such planar facet (adjacent triangles whose corners are coplanar) is triangulated again as the fan from its
 // smallest index: a choice that depends on the points alone.
 void canonical_facets(std::vector<Triangle>& triangles, const std::vector<Point>& points) {
-  std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> face_of;  // directed edge -> triangle
+  // directed edge (a << 32 | b) -> triangle; only looked up, so hashed
+  std::unordered_map<std::uint64_t, std::size_t> face_of;
+  face_of.reserve(3 * triangles.size());
+  const auto edge = [](std::uint32_t a, std::uint32_t b) { return static_cast<std::uint64_t>(a) << 32 | b; };
   for (std::size_t f = 0; f < triangles.size(); ++f)
-    for (int k = 0; k < 3; ++k) face_of[{triangles[f][k], triangles[f][(k + 1) % 3]}] = f;
+    for (int k = 0; k < 3; ++k) face_of[edge(triangles[f][k], triangles[f][(k + 1) % 3])] = f;
   std::vector<std::size_t> group(triangles.size());
   for (std::size_t f = 0; f < triangles.size(); ++f) group[f] = f;
   auto root = [&](std::size_t f) {
@@ -70,7 +75,7 @@ void canonical_facets(std::vector<Triangle>& triangles, const std::vector<Point>
   for (std::size_t f = 0; f < triangles.size(); ++f)
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t a = triangles[f][k], b = triangles[f][(k + 1) % 3], c = triangles[f][(k + 2) % 3];
-      const std::size_t g = face_of.at({b, a});
+      const std::size_t g = face_of.at(edge(b, a));
       std::uint32_t d = 0;
       for (std::uint32_t v : triangles[g])
         if (v != a && v != b) d = v;
@@ -90,7 +95,7 @@ void canonical_facets(std::vector<Triangle>& triangles, const std::vector<Point>
     for (std::size_t f : faces)
       for (int k = 0; k < 3; ++k) {
         const std::uint32_t a = triangles[f][k], b = triangles[f][(k + 1) % 3];
-        if (root(face_of.at({b, a})) != id) next[a] = b;
+        if (root(face_of.at(edge(b, a))) != id) next[a] = b;
       }
     std::uint32_t start = next.begin()->first;  // the smallest index on the boundary
     std::vector<std::uint32_t> polygon{start};
@@ -105,8 +110,17 @@ void canonical_facets(std::vector<Triangle>& triangles, const std::vector<Point>
 // Every point of the sphere is a vertex of the hull (points closer than rounding would not be: an error).
 std::vector<Triangle> sphere_triangulation(const std::vector<Vec3>& directions) {
   using Key = std::array<double, 3>;
+  // Only looked up, so hashed (on the bits, with -0 as 0 since they compare equal).
+  struct KeyHash {
+    std::size_t operator()(const Key& k) const {
+      std::size_t h = 0;
+      for (double d : k) h = h * 0x9E3779B97F4A7C15ULL + std::hash<double>()(d == 0.0 ? 0.0 : d);
+      return h;
+    }
+  };
   std::vector<Point> points;
-  std::map<Key, std::uint32_t> index;
+  std::unordered_map<Key, std::uint32_t, KeyHash> index;
+  index.reserve(directions.size());
   for (std::size_t i = 0; i < directions.size(); ++i) {
     const Vec3& d = directions[i];
     points.emplace_back(d.x, d.y, d.z);
@@ -241,6 +255,18 @@ class PointGrid {
   std::unordered_map<std::uint64_t, std::vector<Vec3>> cells_;
 };
 
+// The triangulation of sphere_points(spacing), made once per spacing in the process: every crowded hub at one
+// tolerance level looks for its creases on the same fine grid, and its hull was most of a template's time. (A
+// handful of spacings in practice, one per tolerance level used.)
+const std::vector<Triangle>& fine_triangulation(double spacing) {
+  static std::mutex mutex;
+  static std::map<double, std::unique_ptr<const std::vector<Triangle>>> made;
+  const std::lock_guard<std::mutex> lock(mutex);
+  auto& slot = made[spacing];
+  if (!slot) slot = std::make_unique<const std::vector<Triangle>>(sphere_triangulation(sphere_points(spacing)));
+  return *slot;
+}
+
 // The crease curves between the pieces, as points on the direction sphere: crossings of the piece boundaries along
 // the edges of a fine triangulation (spacing `fine`), and the triple points where three pieces meet. Directions in a
 // collar's cone (cos of the angle to axis k above cos_limit[k]) are left out: nothing meets there.
@@ -256,7 +282,7 @@ std::vector<Vec3> crease_points(const RadialHub& hub, const std::vector<Vec3>& a
   }
   std::vector<Vec3> creases;
   std::map<std::pair<std::uint32_t, std::uint32_t>, Vec3> on_edge;
-  for (const Triangle& t : sphere_triangulation(grid)) {
+  for (const Triangle& t : fine_triangulation(fine)) {
     if (piece[t[0]] == kHole || piece[t[1]] == kHole || piece[t[2]] == kHole) continue;
     if (piece[t[0]] == piece[t[1]] && piece[t[1]] == piece[t[2]]) continue;
     Vec3 sum(0.0);

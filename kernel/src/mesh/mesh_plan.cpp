@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -85,7 +86,8 @@ void strip_triangles(const std::vector<Vec3>& va, const std::vector<std::uint32_
   }
 }
 
-MeshPlan plan_lattice_mesh(const FlatLattice& f, const MeshOptions& options, Progress& progress) {
+MeshPlan plan_lattice_mesh(const FlatLattice& f, const MeshOptions& options, Progress& progress,
+                           const HubsNeeded& needed) {
   MeshPlan plan;
   plan.lattice = &f;
   LatticeMeshStats& stats = plan.stats;
@@ -125,12 +127,23 @@ MeshPlan plan_lattice_mesh(const FlatLattice& f, const MeshOptions& options, Pro
     plan.hubs[h].templ = it->second;
     stats.crowded_hubs += geometry[h].kind != 0;
   }
+  std::vector<char> built(keys.size(), 1);
+  if (needed) {
+    const std::vector<char> hubs_needed = needed(plan);
+    std::fill(built.begin(), built.end(), 0);
+    for (std::size_t h = 0; h < plan.hubs.size(); ++h)
+      if (hubs_needed[h]) built[plan.hubs[h].templ] = 1;
+  }
   const auto t0 = std::chrono::steady_clock::now();
   plan.templates.resize(keys.size());
   {
     Progress part(progress, 90, static_cast<std::int64_t>(keys.size()));
     tbb::parallel_for(std::size_t(0), keys.size(), [&](std::size_t t) {
       part.check();
+      if (!built[t]) {
+        part.advance();
+        return;
+      }
       const auto [shape, level] = keys[t];
       const std::vector<SphereCap>& caps = catalog.shapes[shape];
       const HubGeometry& rep = geometry[catalog.representatives[shape]];
@@ -157,10 +170,11 @@ MeshPlan plan_lattice_mesh(const FlatLattice& f, const MeshOptions& options, Pro
   plan.beam_first_triangle.assign(f.beam_count() + 1, plan.triangle_count);
   for (std::int64_t e = 0; e < f.beam_count(); ++e) {
     std::uint64_t n = 0;
-    if (frustums[e].exists) {
-      const MeshBeamEnd& a = plan.ends[2 * e];
-      const MeshBeamEnd& b = plan.ends[2 * e + 1];
-      if (a.hub < 0 || b.hub < 0) throw std::runtime_error("mesh: beam " + std::to_string(e) + " lost a hub");
+    const MeshBeamEnd& a = plan.ends[2 * e];
+    const MeshBeamEnd& b = plan.ends[2 * e + 1];
+    if (frustums[e].exists && (a.hub < 0 || b.hub < 0))
+      throw std::runtime_error("mesh: beam " + std::to_string(e) + " lost a hub");
+    if (frustums[e].exists && built[plan.hubs[a.hub].templ] && built[plan.hubs[b.hub].templ]) {
       auto position = [&](const MeshBeamEnd& end) {
         return plan.templates[plan.hubs[end.hub].templ].loop_position[end.slot] *
                f.balls[plan.hubs[end.hub].ball].radius;
@@ -179,7 +193,7 @@ MeshPlan plan_lattice_mesh(const FlatLattice& f, const MeshOptions& options, Pro
   plan.triangle_count = plan.beam_first_triangle[f.beam_count()];
   stats.hubs = static_cast<std::int64_t>(plan.hubs.size());
   stats.distinct_hubs = static_cast<std::int64_t>(catalog.shapes.size());
-  stats.templates = static_cast<std::int64_t>(plan.templates.size());
+  stats.templates = std::count(built.begin(), built.end(), 1);
   stats.triangles = static_cast<std::int64_t>(plan.triangle_count);
   stats.vertices = static_cast<std::int64_t>(plan.vertex_count);
   progress.finish();

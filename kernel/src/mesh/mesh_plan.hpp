@@ -5,6 +5,7 @@
 // a file chunk after chunk (write_lattice_stl), from the same placement arithmetic so the pieces always match.
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "lattice/hub_catalog.hpp"
@@ -40,8 +41,15 @@ struct MeshPlan {
   LatticeMeshStats stats;
 };
 
-// Checks the options and the lattice (InvalidInput naming "tolerance", "lattice" or "hub"), builds the templates.
-MeshPlan plan_lattice_mesh(const FlatLattice& lattice, const MeshOptions& options, Progress& progress);
+// Which hubs will be placed (or hold a loop of a strip that will), given the plan's hubs, frustums and ends before
+// any template exists: one char per hub. A trimmed mesh needs no template for the hubs it drops.
+using HubsNeeded = std::function<std::vector<char>(const MeshPlan&)>;
+
+// Checks the options and the lattice (InvalidInput naming "tolerance", "lattice" or "hub"), builds the templates:
+// all of them, or with `needed` only those of the hubs it names (the others stay empty, and the strips of beams
+// at such hubs are not counted).
+MeshPlan plan_lattice_mesh(const FlatLattice& lattice, const MeshOptions& options, Progress& progress,
+                           const HubsNeeded& needed = {});
 
 // Vertex v of hub h's template in place.
 Vec3 placed_vertex(const MeshPlan& plan, std::size_t h, std::uint32_t v);

@@ -1,12 +1,12 @@
 #pragma once
 // A lattice trimmed into a body as a mesh, optionally with a skin: the mesh counterpart of a LatticePart.
 //
-// Hubs (a ball and its half-beams) are classified against the surface the lattice is trimmed to: inside hubs are
-// placed whole, outside hubs dropped, and only the crossing ones go through a Boolean: the band of crossing hubs
-// and the beams that cross (capped where they meet a hub that is not in the band) is intersected with the body by
-// CGAL's corefinement, the caps at inside hubs are removed again, and the band is joined to the inside part along
-// those hubs' own circles. With a skin, the band (cut at the body where it reaches the body's surface) is then
-// united with the skin (the body minus its inner offset), so that the skin and the lattice are one closed mesh.
+// The mesh's elements (hub sphere patches, beam strips) are classified against the surface the lattice is trimmed
+// to (the body, or with a skin its inner offset): elements clear inside are placed whole, those clear outside
+// dropped, and only the band of elements that may cross goes through one Boolean (CGAL's exact corefinement),
+// closed by caps where it meets the others. The caps at inside elements are removed again, and the band joins the
+// inside part along their own circles. With a skin the band is cut at the inner surface, and the rest of that
+// surface and the body's surface bound the skin (see band_boolean in trimmed_mesh.cpp).
 #include <cstdint>
 
 #include "steady/core/progress.hpp"
@@ -25,7 +25,10 @@ struct TrimmedMeshStats {
   LatticeMeshStats mesh;
   std::int64_t inside_hubs = 0, crossing_hubs = 0, outside_hubs = 0;
   std::int64_t band_triangles = 0;  // triangles that went through the Boolean
-  double boolean_seconds = 0.0;
+  // Phases: checking the body's meshes, planning the hubs, classifying, placing the pieces, the Boolean (with its
+  // rounding), joining.
+  double check_seconds = 0.0, plan_seconds = 0.0, classify_seconds = 0.0, pieces_seconds = 0.0;
+  double boolean_seconds = 0.0, join_seconds = 0.0;
 };
 
 // InvalidInput naming "body" or "inner" for a mesh that is not closed, not outward or self-intersecting, and the
