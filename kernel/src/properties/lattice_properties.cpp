@@ -287,8 +287,19 @@ LatticeProperties properties_from_moments(const MassMoments& m, const Vec3& refe
   return out;
 }
 
+namespace {
+// Every node omitted leaves no ball: a volume of 0 that the centroid and the inertia would be divided by (the
+// moments' overflow check caught it with a message about precision).
+void require_some_ball(const Lattice& lattice) {
+  if (lattice.ball_count() == 0)
+    fail_input("omitted", "lists every node of the lattice: it has no ball or beam, so no volume, area, centroid or "
+                          "inertia; omit fewer nodes");
+}
+}  // namespace
+
 LatticeProperties lattice_properties(const Lattice& lattice, const LatticePropertiesOptions& options,
                                      Progress& progress) {
+  require_some_ball(lattice);
   bool verified = false;
   HubOverlapReport report;
   if (options.check_clean) {
@@ -329,6 +340,7 @@ LatticeProperties lattice_properties(const Lattice& lattice, const LatticeProper
 }
 
 LatticeProperties lattice_properties_brute_force(const Lattice& lattice, const LatticePropertiesOptions& options) {
+  require_some_ball(lattice);
   const Vec3 reference = reference_point(lattice);
   std::atomic<std::int64_t> overlapping{0};
   const MassMoments total = tbb::parallel_deterministic_reduce(
