@@ -119,7 +119,8 @@ py::array voxelize_impl(const steady::InterferenceSource& src, py::handle lo, py
   const std::int64_t n[3] = {to_int(s[0], "shape[0]"), to_int(s[1], "shape[1]"), to_int(s[2], "shape[2]")};
   for (int c = 0; c < 3; ++c)
     if (n[c] < 1) value_error("shape", "every count must be >= 1 (got " + std::to_string(n[c]) + ")");
-  steady::require_memory(static_cast<std::uint64_t>(n[0]) * n[1] * n[2], "voxelize()");
+  steady::require_memory(static_cast<std::uint64_t>(n[0]) * n[1] * n[2], "voxelize(): " + std::to_string(n[0] * n[1] * n[2]) + " voxels",
+                         "use a smaller shape, or voxelize the box in parts");
   py::array_t<bool> out({py::ssize_t(n[0]), py::ssize_t(n[1]), py::ssize_t(n[2])});
   std::uint8_t* data = reinterpret_cast<std::uint8_t*>(out.mutable_data());
   {
@@ -340,7 +341,9 @@ numbering is the running count of a mask, e.g. numpy.flatnonzero).)doc")
       }, "Evaluate the filter for every node once and keep the mask (one byte per ball).")
       .def_property_readonly("materialized", &FilteredLattice::materialized)
       .def("ball_mask", [](const FilteredLattice& f) {
-        steady::require_memory(static_cast<std::uint64_t>(f.lattice().ball_count()), "ball_mask()");
+        steady::require_memory(static_cast<std::uint64_t>(f.lattice().ball_count()),
+                               "ball_mask(): a byte per ball of " + std::to_string(f.lattice().ball_count()),
+                               "query a region (query_ball) or test nodes one at a time");
         py::array_t<bool> out(static_cast<py::ssize_t>(f.lattice().ball_count()));
         auto* d = reinterpret_cast<std::uint8_t*>(out.mutable_data());
         {
@@ -350,7 +353,10 @@ numbering is the running count of a mask, e.g. numpy.flatnonzero).)doc")
         return out;
       }, "A bool per ball of the unfiltered lattice: kept or not.")
       .def("beam_mask", [](const FilteredLattice& f) {
-        steady::require_memory(static_cast<std::uint64_t>(f.lattice().beam_count() + f.lattice().ball_count()), "beam_mask()");
+        steady::require_memory(static_cast<std::uint64_t>(f.lattice().beam_count() + f.lattice().ball_count()),
+                               "beam_mask(): a byte per beam and ball of " +
+                                   std::to_string(f.lattice().beam_count() + f.lattice().ball_count()),
+                               "query a region (query_ball) or test beams one at a time");
         py::array_t<bool> out(static_cast<py::ssize_t>(f.lattice().beam_count()));
         auto* d = reinterpret_cast<std::uint8_t*>(out.mutable_data());
         {

@@ -38,7 +38,8 @@ void build_incidence(FlatLattice& f) {
 FlatLattice flatten(const Lattice& lattice) {
   const std::int64_t nb = lattice.ball_count(), ne = lattice.beam_count();
   require_memory(static_cast<std::uint64_t>(nb) * kBytesPerBall + static_cast<std::uint64_t>(ne) * kBytesPerBeam,
-                 "listing the lattice's balls and beams");
+                 "listing the lattice's " + std::to_string(nb) + " balls and " + std::to_string(ne) + " beams",
+                 "query a region (query_ball), use the closed-form properties, or list a filtered part");
   FlatLattice f;
   {
     std::vector<double> centers(3 * nb), radii(nb);

@@ -28,6 +28,9 @@ bool FilteredLattice::keeps(const NodeId& id) const {
 
 void FilteredLattice::materialize() {
   if (materialized() || !filter_) return;
+  require_memory(static_cast<std::uint64_t>(lattice_->ball_count()),
+                 "materialize(): a mask of the " + std::to_string(lattice_->ball_count()) + " balls (one byte each)",
+                 "query the filtered lattice without materializing it (query_ball, contains, distance)");
   std::vector<std::uint8_t> m(static_cast<std::size_t>(lattice_->ball_count()));
   ball_mask(m.data());
   mask_ = std::move(m);
@@ -119,7 +122,9 @@ void FilteredLattice::beam_mask(std::uint8_t* out) const {
     beam_mask_from(mask_.data(), out);
     return;
   }
-  require_memory(static_cast<std::uint64_t>(lattice_->ball_count()), "ball mask");
+  require_memory(static_cast<std::uint64_t>(lattice_->ball_count()),
+                 "a mask of the " + std::to_string(lattice_->ball_count()) + " balls (one byte each)",
+                 "query the filtered lattice without a mask (query_ball, contains, distance)");
   std::vector<std::uint8_t> balls(static_cast<std::size_t>(lattice_->ball_count()));
   ball_mask(balls.data());
   beam_mask_from(balls.data(), out);
@@ -162,7 +167,7 @@ void FilteredLattice::visit_with(const Ball& query, HitSink& sink, QueryMethod m
 }
 
 BallQueryResult FilteredLattice::query_ball(const Ball& query) const {
-  return detail::collect_hits([&](HitSink& sink) { visit(query, sink); });
+  return detail::collect_hits(query, [&](HitSink& sink) { visit(query, sink); });
 }
 
 bool FilteredLattice::touches(const Ball& query) const {

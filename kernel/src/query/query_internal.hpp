@@ -201,6 +201,9 @@ void visit_slabs(const QueryState& q, Probe& probe, bool reject);
 void visit_constant(const QueryState& q, Probe& probe);
 void visit_blocks(const QueryState& q, Probe& probe);
 
+// A lower bound of the elements a query ball meets, before visiting any (result_estimate.cpp).
+std::int64_t elements_surely_hit(const QueryState& q, const Ball& query);
+
 // Fills q.plan (query_plan.cpp).
 void detect_plan(QueryState& q);
 // A ball containing every element, from every group's balls (any layout: O(groups)).
