@@ -7,6 +7,7 @@
 
 #include "steady/core/errors.hpp"
 #include "steady/core/memory_budget.hpp"
+#include "steady/core/numeric_range.hpp"
 #include "steady/lattice/lattice_io.hpp"
 #include "steady/core/progress.hpp"
 
@@ -49,6 +50,10 @@ PYBIND11_MODULE(steadylattice, m) {
     }
   });
   m.attr("FORMAT_VERSION") = steady::kLatticeFormatVersion;
+  // The supported numerical range (docs/design.md), for callers that check their own parameters against it.
+  m.attr("MAX_COORDINATE") = steady::kMaxCoordinate;
+  m.attr("MAX_ANGLE") = steady::kMaxAngle;
+  m.attr("MAX_LOG_SCALE") = steady::kMaxLogScale;
   steadypy::bind_similarity(m);
   steadypy::bind_lattice(m);
   steadypy::bind_brep(m);
