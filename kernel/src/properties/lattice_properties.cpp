@@ -343,9 +343,12 @@ LatticeProperties lattice_properties_brute_force(const Lattice& lattice, const L
   require_some_ball(lattice);
   const Vec3 reference = reference_point(lattice);
   std::atomic<std::int64_t> overlapping{0};
+  Progress* const caller = current_progress();
   const MassMoments total = tbb::parallel_deterministic_reduce(
       tbb::blocked_range<std::int64_t>(0, lattice.ball_count(), 256), MassMoments{},
       [&](const tbb::blocked_range<std::int64_t>& range, MassMoments sum) {
+        const ProgressScope scope(caller);  // every hub integrated: minutes on a large lattice, so cancellable
+        poll_progress();
         for (std::int64_t index = range.begin(); index != range.end(); ++index) {
           const Hub h = hub(lattice, lattice.ball_id(index));
           const HubProperties p = hub_properties(hub_shape(h), options.hub);
