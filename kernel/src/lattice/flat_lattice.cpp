@@ -7,6 +7,7 @@
 
 #include "steady/core/errors.hpp"
 #include "steady/core/memory_budget.hpp"
+#include "steady/core/progress.hpp"
 
 namespace steady {
 
@@ -44,6 +45,7 @@ FlatLattice flatten(const Lattice& lattice) {
   {
     std::vector<double> centers(3 * nb), radii(nb);
     lattice.balls(centers.data(), radii.data());
+    poll_progress();  // each step takes a second or more per 10^7 elements: Ctrl-C between them
     f.balls.resize(nb);
     tbb::parallel_for(std::int64_t(0), nb, [&](std::int64_t i) {
       f.balls[i] = {{centers[3 * i], centers[3 * i + 1], centers[3 * i + 2]}, radii[i]};
@@ -53,9 +55,11 @@ FlatLattice flatten(const Lattice& lattice) {
     std::vector<std::int64_t> a(ne), b(ne);
     std::vector<double> ra(ne), rb(ne);
     lattice.beams(a.data(), b.data(), ra.data(), rb.data());
+    poll_progress();
     f.beams.resize(ne);
     tbb::parallel_for(std::int64_t(0), ne, [&](std::int64_t e) { f.beams[e] = {a[e], b[e], ra[e], rb[e]}; });
   }
+  poll_progress();
   build_incidence(f);
   return f;
 }
