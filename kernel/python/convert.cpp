@@ -157,10 +157,11 @@ std::vector<steady::NodeId> to_omitted(py::handle value) {
 PythonProgress::PythonProgress(py::object report) : report_(std::move(report)) {}
 
 steady::Progress::Callback PythonProgress::callback() {
-  if (report_.is_none()) return {};
   return [this](double fraction) {
     py::gil_scoped_acquire gil;
     try {
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();  // KeyboardInterrupt from Ctrl-C
+      if (report_.is_none()) return true;
       py::object answer = report_(fraction);
       return answer.is_none() || answer.cast<bool>();
     } catch (py::error_already_set& e) {

@@ -39,7 +39,9 @@ void require_stats_target(const py::object& target);
 
 // A kernel progress callback from a Python callable `report(fraction)` (None: no reporting). The callable runs
 // with the GIL held, on the calling thread only; returning False cancels (steadylattice.Cancelled is raised).
-// An exception raised by the callable cancels too, and is raised again by rethrow_callback_error().
+// An exception raised by the callable cancels too, and is raised again by rethrow_callback_error(). With or
+// without a callable, the callback runs Python's signal handlers first: Ctrl-C, which only sets a flag while the
+// kernel works without the GIL, cancels the call and KeyboardInterrupt is raised.
 struct PythonProgress {
   explicit PythonProgress(py::object report);
   steady::Progress::Callback callback();
@@ -60,11 +62,19 @@ auto run_with_progress(const py::object& report, Work&& work) {
   steady::Progress progress(python.callback());
   try {
     py::gil_scoped_release release;
+    const steady::ProgressScope scope(&progress);  // for the kernel's code that polls instead of being handed one
     return work(progress);
   } catch (const steady::Cancelled&) {
     python.rethrow_callback_error();
     throw;
   }
+}
+
+// Runs `work()` with the GIL released, interruptible by Ctrl-C (the kernel polls the current progress; see
+// PythonProgress): for long calls that report no progress of their own.
+template <class Work>
+auto run_interruptible(Work&& work) {
+  return run_with_progress(py::none(), [&](steady::Progress&) { return work(); });
 }
 
 }  // namespace steadypy

@@ -6,6 +6,8 @@
 #include <string>
 
 #include "steady/core/errors.hpp"
+#include "steady/core/memory_budget.hpp"
+#include "steady/core/numeric_range.hpp"
 #include "steady/lattice/lattice_io.hpp"
 #include "steady/core/progress.hpp"
 
@@ -33,6 +35,11 @@ PYBIND11_MODULE(steadylattice, m) {
       if (p) std::rethrow_exception(p);
     } catch (const steady::ResourceLimit& e) {
       PyErr_SetString(PyExc_MemoryError, e.what());
+    } catch (const std::bad_alloc& e) {  // an allocation no estimate refused: give the figures pybind11 would not
+      PyErr_SetString(PyExc_MemoryError,
+                      (std::string("out of memory (") + e.what() + ") with " + steady::memory_budget_description() +
+                       ": the request was larger than its estimate; make it smaller (a preview, a mesh, a 3MF beam "
+                       "lattice, a filter or a region)").c_str());
     } catch (const steady::Cancelled& e) {
       PyErr_SetString(cancelled.ptr(), e.what());
     } catch (const Standard_OutOfMemory& e) {  // OpenCASCADE's allocator under a memory limit
@@ -43,6 +50,10 @@ PYBIND11_MODULE(steadylattice, m) {
     }
   });
   m.attr("FORMAT_VERSION") = steady::kLatticeFormatVersion;
+  // The supported numerical range (docs/design.md), for callers that check their own parameters against it.
+  m.attr("MAX_COORDINATE") = steady::kMaxCoordinate;
+  m.attr("MAX_ANGLE") = steady::kMaxAngle;
+  m.attr("MAX_LOG_SCALE") = steady::kMaxLogScale;
   steadypy::bind_similarity(m);
   steadypy::bind_lattice(m);
   steadypy::bind_brep(m);

@@ -118,7 +118,9 @@ void bind_lattice_contents(py::class_<Lattice>& cls) {
   cls.def(
           "balls",
           [](const Lattice& lat) {
-            steady::require_memory(static_cast<std::uint64_t>(lat.ball_count()) * 32u, "balls()");
+            steady::require_memory(static_cast<std::uint64_t>(lat.ball_count()) * 32u,
+                                   "balls(): " + std::to_string(lat.ball_count()) + " balls",
+                                   "query a region (query_ball), iterate with ball(i, j, k, n), or use properties()");
             py::array_t<double> centers({py::ssize_t(lat.ball_count()), py::ssize_t(3)});
             py::array_t<double> radii(py::ssize_t(lat.ball_count()));
             double *c = centers.mutable_data(), *r = radii.mutable_data();
@@ -133,7 +135,8 @@ void bind_lattice_contents(py::class_<Lattice>& cls) {
           "beams",
           [](const Lattice& lat) {
             const py::ssize_t n = lat.beam_count();
-            steady::require_memory(static_cast<std::uint64_t>(n) * 32u, "beams()");
+            steady::require_memory(static_cast<std::uint64_t>(n) * 32u, "beams(): " + std::to_string(n) + " beams",
+                                   "query a region (query_ball) or use properties()");
             py::array_t<std::int64_t> a(n), b(n);
             py::array_t<double> ra(n), rb(n);
             std::int64_t *pa = a.mutable_data(), *pb = b.mutable_data();

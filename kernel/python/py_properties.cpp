@@ -95,10 +95,7 @@ the sum over hubs. Multiply volume and inertia by a density for mass properties.
       .def(
           "properties_brute_force",
           [](const Lattice& lat) {
-            py::gil_scoped_release release;
-            steady::LatticeProperties p = steady::lattice_properties_brute_force(lat);
-            py::gil_scoped_acquire gil;
-            return properties_dict(p);
+            return properties_dict(run_interruptible([&] { return steady::lattice_properties_brute_force(lat); }));
           },
           "The same properties summed over every hub (slow: for checks).")
       .def(

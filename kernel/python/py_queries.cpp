@@ -1,6 +1,6 @@
 // Python bindings of the queries: ball interference, point membership, distance, rays, voxels on
 // lattices and filtered lattices, and the node filters. Thin: conversions, the GIL released while the
-// kernel works (and taken back by Python callables used as filters).
+// kernel works (and taken back by Python callables used as filters), every call interruptible by Ctrl-C.
 #include <pybind11/functional.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -76,10 +76,7 @@ py::object contains_impl(const steady::InterferenceSource& src, py::handle point
   auto p = to_points(points, "points", 3, &single);
   const auto n = static_cast<std::size_t>(p.shape(0));
   py::array_t<bool> out(static_cast<py::ssize_t>(n));
-  {
-    py::gil_scoped_release release;
-    steady::contains(src, p.data(), n, reinterpret_cast<std::uint8_t*>(out.mutable_data()));
-  }
+  run_interruptible([&] { steady::contains(src, p.data(), n, reinterpret_cast<std::uint8_t*>(out.mutable_data())); });
   if (single) return py::bool_(out.at(0));
   return std::move(out);
 }
@@ -89,10 +86,7 @@ py::object distance_impl(const steady::InterferenceSource& src, py::handle point
   auto p = to_points(points, "points", 3, &single);
   const auto n = static_cast<std::size_t>(p.shape(0));
   py::array_t<double> out(static_cast<py::ssize_t>(n));
-  {
-    py::gil_scoped_release release;
-    steady::distance(src, p.data(), n, bound, out.mutable_data());
-  }
+  run_interruptible([&] { steady::distance(src, p.data(), n, bound, out.mutable_data()); });
   if (single) return py::float_(out.at(0));
   return std::move(out);
 }
@@ -104,10 +98,7 @@ py::object raycast_impl(const steady::InterferenceSource& src, py::handle origin
   if (o.shape(0) != d.shape(0)) value_error("directions", "needs one direction per origin");
   const auto n = static_cast<std::size_t>(o.shape(0));
   py::array_t<double> out(static_cast<py::ssize_t>(n));
-  {
-    py::gil_scoped_release release;
-    steady::raycast(src, o.data(), d.data(), n, max_distance, out.mutable_data());
-  }
+  run_interruptible([&] { steady::raycast(src, o.data(), d.data(), n, max_distance, out.mutable_data()); });
   if (single_o && single_d) return py::float_(out.at(0));
   return std::move(out);
 }
@@ -119,13 +110,11 @@ py::array voxelize_impl(const steady::InterferenceSource& src, py::handle lo, py
   const std::int64_t n[3] = {to_int(s[0], "shape[0]"), to_int(s[1], "shape[1]"), to_int(s[2], "shape[2]")};
   for (int c = 0; c < 3; ++c)
     if (n[c] < 1) value_error("shape", "every count must be >= 1 (got " + std::to_string(n[c]) + ")");
-  steady::require_memory(static_cast<std::uint64_t>(n[0]) * n[1] * n[2], "voxelize()");
+  steady::require_memory(static_cast<std::uint64_t>(n[0]) * n[1] * n[2], "voxelize(): " + std::to_string(n[0] * n[1] * n[2]) + " voxels",
+                         "use a smaller shape, or voxelize the box in parts");
   py::array_t<bool> out({py::ssize_t(n[0]), py::ssize_t(n[1]), py::ssize_t(n[2])});
   std::uint8_t* data = reinterpret_cast<std::uint8_t*>(out.mutable_data());
-  {
-    py::gil_scoped_release release;
-    steady::voxelize(src, l, h, n, data);
-  }
+  run_interruptible([&] { steady::voxelize(src, l, h, n, data); });
   return std::move(out);
 }
 
@@ -187,10 +176,7 @@ void bind_lattice_queries(py::module_& m) {
             const QueryMethod mm = method_of(method);
             auto lq = query_for(self);
             steady::BallQueryResult r;
-            {
-              py::gil_scoped_release release;
-              r = lq->query_ball(q, mm);
-            }
+            run_interruptible([&] { r = lq->query_ball(q, mm); });
             return result_arrays(r);
           },
           py::arg("center"), py::arg("radius"), py::arg("method") = "auto",
@@ -277,10 +263,8 @@ keeps a ball whose node passes and a beam whose two nodes both pass.)doc")
         // A filtered coarse lattice is evaluated once for all its nodes (one byte per ball) when that is
         // small next to the fine work it saves: every fine node then looks coarse nodes up instead of
         // filtering them again.
-        if (c->filter() && !c->materialized() && c->lattice().ball_count() <= kMaterializeCoarseBalls) {
-          py::gil_scoped_release release;
-          c->materialize();
-        }
+        if (c->filter() && !c->materialized() && c->lattice().ball_count() <= kMaterializeCoarseBalls)
+          run_interruptible([&] { c->materialize(); });
         return PyFilter{steady::lattice_in_lattice(c)};
       },
       py::arg("coarse"),
@@ -334,38 +318,32 @@ numbering is the running count of a mask, e.g. numpy.flatnonzero).)doc")
         if (!f.filter()) return py::none();
         return py::cast(PyFilter{f.filter()});
       })
-      .def("materialize", [](FilteredLattice& f) {
-        py::gil_scoped_release release;
-        f.materialize();
-      }, "Evaluate the filter for every node once and keep the mask (one byte per ball).")
+      .def("materialize", [](FilteredLattice& f) { run_interruptible([&] { f.materialize(); }); },
+           "Evaluate the filter for every node once and keep the mask (one byte per ball).")
       .def_property_readonly("materialized", &FilteredLattice::materialized)
       .def("ball_mask", [](const FilteredLattice& f) {
-        steady::require_memory(static_cast<std::uint64_t>(f.lattice().ball_count()), "ball_mask()");
+        steady::require_memory(static_cast<std::uint64_t>(f.lattice().ball_count()),
+                               "ball_mask(): a byte per ball of " + std::to_string(f.lattice().ball_count()),
+                               "query a region (query_ball) or test nodes one at a time");
         py::array_t<bool> out(static_cast<py::ssize_t>(f.lattice().ball_count()));
         auto* d = reinterpret_cast<std::uint8_t*>(out.mutable_data());
-        {
-          py::gil_scoped_release release;
-          f.ball_mask(d);
-        }
+        run_interruptible([&] { f.ball_mask(d); });
         return out;
       }, "A bool per ball of the unfiltered lattice: kept or not.")
       .def("beam_mask", [](const FilteredLattice& f) {
-        steady::require_memory(static_cast<std::uint64_t>(f.lattice().beam_count() + f.lattice().ball_count()), "beam_mask()");
+        steady::require_memory(static_cast<std::uint64_t>(f.lattice().beam_count() + f.lattice().ball_count()),
+                               "beam_mask(): a byte per beam and ball of " +
+                                   std::to_string(f.lattice().beam_count() + f.lattice().ball_count()),
+                               "query a region (query_ball) or test beams one at a time");
         py::array_t<bool> out(static_cast<py::ssize_t>(f.lattice().beam_count()));
         auto* d = reinterpret_cast<std::uint8_t*>(out.mutable_data());
-        {
-          py::gil_scoped_release release;
-          f.beam_mask(d);
-        }
+        run_interruptible([&] { f.beam_mask(d); });
         return out;
       }, "A bool per beam of the unfiltered lattice: kept when both its nodes are.")
       .def("query_ball", [](const FilteredLattice& f, py::handle center, py::handle radius) {
         const Ball q = query_ball_arg(center, radius);
         steady::BallQueryResult r;
-        {
-          py::gil_scoped_release release;
-          r = f.query_ball(q);
-        }
+        run_interruptible([&] { r = f.query_ball(q); });
         return result_arrays(r);
       }, py::arg("center"), py::arg("radius"))
       .def("contains", [](const FilteredLattice& f, py::handle points) { return contains_impl(f, points); }, py::arg("points"))

@@ -482,7 +482,8 @@ void check_selection(const FlatLattice& f, const BrepSelection& selection) {
   std::uint64_t faces = 0;
   for (char b : selection.balls) faces += b ? 1 : 0;
   for (char b : selection.beams) faces += b ? 2 : 0;
-  require_memory(faces * kBytesPerFace, "the B-rep of " + std::to_string(faces) + " faces");
+  require_memory(faces * kBytesPerFace, "the B-rep of " + std::to_string(faces) + " faces",
+                 "build a preview, a mesh (to_mesh, STL) or a 3MF beam lattice, or a part of the lattice (a filter)");
 }
 
 // Which balls are built, and how each beam is: whole, one half, two halves meeting at the cut, or not at all.

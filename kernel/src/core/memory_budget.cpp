@@ -43,18 +43,41 @@ std::uint64_t memory_budget_bytes() {
   return static_cast<std::uint64_t>(kMemoryBudgetFraction * static_cast<double>(available_memory_bytes()));
 }
 
-void require_memory(std::uint64_t bytes, const std::string& what) {
-  const std::uint64_t budget = memory_budget_bytes();
-  if (bytes <= budget) return;
-  const bool process_limited = process_headroom_bytes() < machine_available_bytes();
+
+namespace {
+
+// One reading of both limits, so that the check and its message state the same figures.
+struct Budget {
+  std::uint64_t machine = machine_available_bytes(), process = process_headroom_bytes();
+  std::uint64_t available() const { return std::min(machine, process); }
+  std::uint64_t bytes() const { return static_cast<std::uint64_t>(kMemoryBudgetFraction * static_cast<double>(available())); }
+};
+
+std::string describe(const Budget& b) {
   std::ostringstream os;
   os.precision(3);
-  os << what << " needs " << static_cast<double>(bytes) / 1e9 << " GB, more than the " << static_cast<double>(budget) / 1e9
-     << " GB it may use (" << kMemoryBudgetFraction * 100 << " % of the "
-     << static_cast<double>(available_memory_bytes()) / 1e9 << " GB "
-     << (process_limited ? "left under this process's memory limit" : "this machine has available")
-     << "); query a region, use the closed-form properties, or a preview instead";
-  throw ResourceLimit(os.str());
+  os << "the " << static_cast<double>(b.bytes()) / 1e9 << " GB it may use (" << kMemoryBudgetFraction * 100
+     << " % of the " << static_cast<double>(b.available()) / 1e9 << " GB "
+     << (b.process < b.machine ? "left under this process's address-space limit, RLIMIT_AS" : "this machine has available")
+     << ")";
+  return os.str();
+}
+
+std::string refusal(const Budget& b, std::uint64_t bytes, const std::string& what, const std::string& instead) {
+  std::ostringstream os;
+  os.precision(3);
+  os << what << " needs " << static_cast<double>(bytes) / 1e9 << " GB, more than " << describe(b) << "; " << instead;
+  return os.str();
+}
+
+}  // namespace
+
+std::string memory_budget_description() { return describe(Budget{}); }
+
+void require_memory(std::uint64_t bytes, const std::string& what, const std::string& instead) {
+  const Budget b;
+  if (bytes <= b.bytes()) return;
+  throw ResourceLimit(refusal(b, bytes, what, instead));
 }
 
 }  // namespace steady

@@ -65,6 +65,15 @@ void Progress::finish() {
   report();
 }
 
+namespace {
+thread_local Progress* t_current = nullptr;
+}  // namespace
+
+Progress* current_progress() { return t_current; }
+
+ProgressScope::ProgressScope(Progress* progress) : previous_(t_current) { t_current = progress; }
+ProgressScope::~ProgressScope() { t_current = previous_; }
+
 Progress& no_progress() {
   // thread_local: each thread's no-op progress is its own (its owner check then always passes harmlessly)
   thread_local Progress none;

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "steady/lattice/flat_lattice.hpp"
+#include "steady/core/progress.hpp"
 
 namespace steady {
 
@@ -30,7 +31,10 @@ Circle BeamFrustum::cut_circle() const {
 
 std::vector<BeamFrustum> beam_frustums(const FlatLattice& f) {
   std::vector<BeamFrustum> out(f.beam_count());
+  Progress* const caller = current_progress();  // cancellable (Ctrl-C) on large lattices
   tbb::parallel_for(std::int64_t(0), f.beam_count(), [&](std::int64_t e) {
+    const ProgressScope scope(caller);
+    if ((e & 4095) == 0) poll_progress();
     const FlatBeam& b = f.beams[e];
     out[e] = beam_frustum(f.balls[b.a], f.balls[b.b], b.ra, b.rb);
   });

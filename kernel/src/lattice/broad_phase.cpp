@@ -1,4 +1,5 @@
 #include "steady/lattice/broad_phase.hpp"
+#include "steady/core/progress.hpp"
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -76,7 +77,10 @@ std::vector<std::pair<std::int64_t, std::int64_t>> overlapping_box_pairs(const s
   }
   for (std::int64_t i = 0; i < n; ++i) entry_count[i + 1] += entry_count[i];
   std::vector<std::pair<std::uint64_t, std::int64_t>> entries(entry_count[n]);
+  Progress* const caller = current_progress();  // each stage takes seconds per million boxes: cancellable
   tbb::parallel_for(std::int64_t(0), n, [&](std::int64_t i) {
+    const ProgressScope scope(caller);
+    if ((i & 4095) == 0) poll_progress();
     if (entry_count[i + 1] == entry_count[i]) return;
     const auto a = grid.coord(boxes[i].lo), b = grid.coord(boxes[i].hi);
     std::int64_t at = entry_count[i];
@@ -85,6 +89,7 @@ std::vector<std::pair<std::int64_t, std::int64_t>> overlapping_box_pairs(const s
         for (std::int64_t x = a[0]; x <= b[0]; ++x) entries[at++] = {Grid::key(x, y, z), i};
   });
   tbb::parallel_sort(entries.begin(), entries.end());
+  poll_progress();
   std::vector<std::int64_t> runs;
   for (std::int64_t e = 0; e < static_cast<std::int64_t>(entries.size()); ++e)
     if (e == 0 || entries[e].first != entries[e - 1].first) runs.push_back(e);
@@ -92,6 +97,8 @@ std::vector<std::pair<std::int64_t, std::int64_t>> overlapping_box_pairs(const s
 
   tbb::enumerable_thread_specific<std::vector<Pair>> found;
   tbb::parallel_for(std::size_t(0), runs.size() - 1, [&](std::size_t r) {
+    const ProgressScope scope(caller);
+    if ((r & 1023) == 0) poll_progress();
     auto& out = found.local();
     const std::uint64_t cell = entries[runs[r]].first;
     for (std::int64_t x = runs[r]; x < runs[r + 1]; ++x)

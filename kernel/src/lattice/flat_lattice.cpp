@@ -7,6 +7,7 @@
 
 #include "steady/core/errors.hpp"
 #include "steady/core/memory_budget.hpp"
+#include "steady/core/progress.hpp"
 
 namespace steady {
 
@@ -38,11 +39,13 @@ void build_incidence(FlatLattice& f) {
 FlatLattice flatten(const Lattice& lattice) {
   const std::int64_t nb = lattice.ball_count(), ne = lattice.beam_count();
   require_memory(static_cast<std::uint64_t>(nb) * kBytesPerBall + static_cast<std::uint64_t>(ne) * kBytesPerBeam,
-                 "listing the lattice's balls and beams");
+                 "listing the lattice's " + std::to_string(nb) + " balls and " + std::to_string(ne) + " beams",
+                 "query a region (query_ball), use the closed-form properties, or list a filtered part");
   FlatLattice f;
   {
     std::vector<double> centers(3 * nb), radii(nb);
     lattice.balls(centers.data(), radii.data());
+    poll_progress();  // each step takes a second or more per 10^7 elements: Ctrl-C between them
     f.balls.resize(nb);
     tbb::parallel_for(std::int64_t(0), nb, [&](std::int64_t i) {
       f.balls[i] = {{centers[3 * i], centers[3 * i + 1], centers[3 * i + 2]}, radii[i]};
@@ -52,9 +55,11 @@ FlatLattice flatten(const Lattice& lattice) {
     std::vector<std::int64_t> a(ne), b(ne);
     std::vector<double> ra(ne), rb(ne);
     lattice.beams(a.data(), b.data(), ra.data(), rb.data());
+    poll_progress();
     f.beams.resize(ne);
     tbb::parallel_for(std::int64_t(0), ne, [&](std::int64_t e) { f.beams[e] = {a[e], b[e], ra[e], rb[e]}; });
   }
+  poll_progress();
   build_incidence(f);
   return f;
 }

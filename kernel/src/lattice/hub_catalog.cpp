@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "lattice/circle_frames.hpp"
+#include "steady/core/progress.hpp"
 
 namespace steady {
 
@@ -83,7 +84,10 @@ HubCatalog catalog_hubs(const std::vector<HubGeometry>& hubs) {
   cat.placements.resize(n);
   std::vector<std::vector<SphereCap>> caps(n);
   std::vector<std::uint64_t> keys(n);
+  Progress* const caller = current_progress();  // a million hubs take seconds: cancellable (Ctrl-C)
   tbb::parallel_for(std::int64_t(0), n, [&](std::int64_t h) {
+    const ProgressScope scope(caller);
+    if ((h & 1023) == 0) poll_progress();
     cat.placements[h] = canonical_frame(hubs[h]);
     caps[h] = canonical_caps(hubs[h], cat.placements[h].rotation);
     keys[h] = hash_caps(caps[h], hubs[h].kind, hubs[h].extras);

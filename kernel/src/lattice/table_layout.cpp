@@ -20,7 +20,9 @@ TableLayout::TableLayout(const Counts& counts, std::vector<Similarity> similarit
                                    " x " + std::to_string(counts.w) + ", got " +
                                    std::to_string(similarities_.size()) + ")");
   require_representable_scales(max_abs_log_scale(), "similarities");
-  require_memory(static_cast<std::uint64_t>(similarities_.size()) * sizeof(SimilarityTransform), "table layout");
+  require_memory(static_cast<std::uint64_t>(similarities_.size()) * sizeof(SimilarityTransform),
+                 "a table layout of " + std::to_string(similarities_.size()) + " similarities",
+                 "use a steady layout (a similarity per step), which stores nothing per group");
   transforms_.reserve(similarities_.size());
   for (const Similarity& s : similarities_) transforms_.push_back(s.transform());
 }
@@ -31,7 +33,9 @@ LayoutPtr TableLayout::make(const Counts& counts, std::vector<Similarity> simila
 
 LayoutPtr TableLayout::of(const Layout& layout) {
   const Counts& c = layout.counts();
-  require_memory(static_cast<std::uint64_t>(c.groups()) * 2 * sizeof(SimilarityTransform), "table layout");
+  require_memory(static_cast<std::uint64_t>(c.groups()) * 2 * sizeof(SimilarityTransform),
+                 "a table layout of " + std::to_string(c.groups()) + " groups",
+                 "keep the steady layout, which stores nothing per group");
   std::vector<Similarity> table;
   table.reserve(static_cast<std::size_t>(c.groups()));
   for (std::int64_t k = 0; k < c.w; ++k)

@@ -23,7 +23,8 @@ TriangleMesh lattice_mesh(const FlatLattice& f, const MeshOptions& options, Latt
     throw ResourceLimit("mesh: " + std::to_string(plan.vertex_count) +
                         " vertices exceed the 2^32 an indexed mesh holds: use a larger tolerance, or write STL");
   require_memory(plan.vertex_count * sizeof(Vec3) + plan.triangle_count * sizeof(Triangle),
-                 "a mesh of " + std::to_string(plan.triangle_count) + " triangles (a larger tolerance makes fewer)");
+                 "mesh: " + std::to_string(plan.triangle_count) + " triangles",
+                 "use a larger tolerance (fewer triangles), write STL as it is built, or a 3MF beam lattice");
   TriangleMesh mesh;
   mesh.vertices.resize(plan.vertex_count);
   mesh.triangles.resize(plan.triangle_count);

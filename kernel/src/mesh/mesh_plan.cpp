@@ -18,6 +18,7 @@
 #include "steady/core/memory_budget.hpp"
 #include "steady/lattice/beam_frustum.hpp"
 #include "steady/query/clean_check.hpp"
+#include "steady/core/progress.hpp"
 
 namespace steady {
 
@@ -103,6 +104,7 @@ MeshPlan plan_lattice_mesh(const FlatLattice& f, const MeshOptions& options, Pro
   std::vector<HubGeometry> geometry;
   plan.ends.assign(2 * f.beam_count(), MeshBeamEnd{});
   for (std::int64_t i = 0; i < f.ball_count(); ++i) {
+    if ((i & 4095) == 0) progress.check();  // one hub after the other: seconds per million
     if (absorbed[i]) continue;
     MeshHub h;
     h.ball = i;
@@ -169,6 +171,7 @@ MeshPlan plan_lattice_mesh(const FlatLattice& f, const MeshOptions& options, Pro
   }
   plan.beam_first_triangle.assign(f.beam_count() + 1, plan.triangle_count);
   for (std::int64_t e = 0; e < f.beam_count(); ++e) {
+    if ((e & 4095) == 0) progress.check();
     std::uint64_t n = 0;
     const MeshBeamEnd& a = plan.ends[2 * e];
     const MeshBeamEnd& b = plan.ends[2 * e + 1];

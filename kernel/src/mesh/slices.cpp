@@ -130,7 +130,8 @@ LatticeSlicer::LatticeSlicer(const FlatLattice& lattice, const SliceOptions& opt
   if (static_cast<double>(width_) * static_cast<double>(height_) > 4e9)
     throw ResourceLimit("slices: a layer of " + std::to_string(width_) + " x " + std::to_string(height_) +
                         " pixels is too large: use a larger pixel_size");
-  require_memory(static_cast<std::uint64_t>(width_ * height_), "a layer bitmap");
+  require_memory(static_cast<std::uint64_t>(width_ * height_), "slices: a layer bitmap of " + std::to_string(width_) + " x " +
+                 std::to_string(height_) + " pixels", "use a larger pixel_size");
   std::sort(elements_.begin(), elements_.end(), [](const Element& a, const Element& b) { return a.z_min < b.z_min; });
   for (const Element& e : elements_) tallest_ = std::max(tallest_, e.z_max - e.z_min);
 }

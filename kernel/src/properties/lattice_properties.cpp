@@ -287,8 +287,19 @@ LatticeProperties properties_from_moments(const MassMoments& m, const Vec3& refe
   return out;
 }
 
+namespace {
+// Every node omitted leaves no ball: a volume of 0 that the centroid and the inertia would be divided by (the
+// moments' overflow check caught it with a message about precision).
+void require_some_ball(const Lattice& lattice) {
+  if (lattice.ball_count() == 0)
+    fail_input("omitted", "lists every node of the lattice: it has no ball or beam, so no volume, area, centroid or "
+                          "inertia; omit fewer nodes");
+}
+}  // namespace
+
 LatticeProperties lattice_properties(const Lattice& lattice, const LatticePropertiesOptions& options,
                                      Progress& progress) {
+  require_some_ball(lattice);
   bool verified = false;
   HubOverlapReport report;
   if (options.check_clean) {
@@ -329,11 +340,15 @@ LatticeProperties lattice_properties(const Lattice& lattice, const LatticeProper
 }
 
 LatticeProperties lattice_properties_brute_force(const Lattice& lattice, const LatticePropertiesOptions& options) {
+  require_some_ball(lattice);
   const Vec3 reference = reference_point(lattice);
   std::atomic<std::int64_t> overlapping{0};
+  Progress* const caller = current_progress();
   const MassMoments total = tbb::parallel_deterministic_reduce(
       tbb::blocked_range<std::int64_t>(0, lattice.ball_count(), 256), MassMoments{},
       [&](const tbb::blocked_range<std::int64_t>& range, MassMoments sum) {
+        const ProgressScope scope(caller);  // every hub integrated: minutes on a large lattice, so cancellable
+        poll_progress();
         for (std::int64_t index = range.begin(); index != range.end(); ++index) {
           const Hub h = hub(lattice, lattice.ball_id(index));
           const HubProperties p = hub_properties(hub_shape(h), options.hub);

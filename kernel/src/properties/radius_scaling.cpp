@@ -173,7 +173,9 @@ void RadiusScaledVolume::Model::build_from_sums() {
       if (m.beams.size() + static_cast<std::size_t>(ri.size() * rj.size()) > kMaxBeamShapes)
         throw ResourceLimit("radius scaling: the lattice has more than " + std::to_string(kMaxBeamShapes) +
                             " distinct beam shapes (its W does not commute with V)");
-      require_memory(static_cast<std::uint64_t>(ri.size() * rj.size()) * sizeof(BeamShape), "radius scaling");
+      require_memory(static_cast<std::uint64_t>(ri.size() * rj.size()) * sizeof(BeamShape),
+                     "radius scaling: " + std::to_string(ri.size() * rj.size()) + " beam shapes",
+                     "scale the radii of a smaller lattice of the same steps");
       std::vector<SimilarityTransform> u_powers(n.u);
       for (std::int64_t i = 0; i < n.u; ++i) u_powers[i] = c.u_pow(i);
       for (std::int64_t j = rj.lo; j < rj.hi; ++j) {

@@ -12,6 +12,7 @@
 #include "steady/lattice/beam_frustum.hpp"
 #include "steady/lattice/broad_phase.hpp"
 #include "steady/lattice/convex_distance.hpp"
+#include "steady/core/progress.hpp"
 
 namespace steady {
 
@@ -257,11 +258,20 @@ CleanReport check_clean(const FlatLattice& f, const CleanCheckOptions& options) 
   CleanReport report;
   const Elements el = prepare(f, report);
   tbb::enumerable_thread_specific<std::vector<CleanIssue>> found;
+  // Seconds per million elements: cancellable (Ctrl-C) through the caller's current progress.
+  Progress* const caller = current_progress();
   if (!options.skip_circle_overlaps)
-    tbb::parallel_for(std::int64_t(0), f.ball_count(), [&](std::int64_t i) { check_caps(f, el, i, found.local()); });
+    tbb::parallel_for(std::int64_t(0), f.ball_count(), [&](std::int64_t i) {
+      const ProgressScope scope(caller);
+      if ((i & 1023) == 0) poll_progress();
+      check_caps(f, el, i, found.local());
+    });
+  poll_progress();
   const auto pairs = overlapping_box_pairs(element_boxes(f, el));
   report.candidate_pairs = static_cast<std::int64_t>(pairs.size());
   tbb::parallel_for(std::size_t(0), pairs.size(), [&](std::size_t p) {
+    const ProgressScope scope(caller);
+    if ((p & 1023) == 0) poll_progress();
     check_pair(f, el, pairs[p].first, pairs[p].second, found.local());
   });
   std::vector<CleanIssue> issues;

@@ -5,6 +5,7 @@
 #include "query/hit_sinks.hpp"
 
 #include "steady/core/memory_budget.hpp"
+#include "steady/core/progress.hpp"
 
 namespace steady {
 
@@ -28,6 +29,9 @@ bool FilteredLattice::keeps(const NodeId& id) const {
 
 void FilteredLattice::materialize() {
   if (materialized() || !filter_) return;
+  require_memory(static_cast<std::uint64_t>(lattice_->ball_count()),
+                 "materialize(): a mask of the " + std::to_string(lattice_->ball_count()) + " balls (one byte each)",
+                 "query the filtered lattice without materializing it (query_ball, contains, distance)");
   std::vector<std::uint8_t> m(static_cast<std::size_t>(lattice_->ball_count()));
   ball_mask(m.data());
   mask_ = std::move(m);
@@ -47,7 +51,10 @@ void FilteredLattice::ball_mask(std::uint8_t* out) const {
   // One batch per (j, k) row of groups: its nodes' ids and balls, filtered together.
   const Counts& c = lat.counts();
   const int nodes = lat.node_count();
+  Progress* const caller = current_progress();
   auto row = [&](std::int64_t r) {
+    const ProgressScope scope(caller);  // a row may take long (a filter running queries): it can be cancelled
+    poll_progress();
     const std::int64_t j = r % c.v, k = r / c.v;
     std::vector<NodeId> ids;
     std::vector<Ball> balls;
@@ -83,9 +90,12 @@ void FilteredLattice::beam_mask_from(const std::uint8_t* balls, std::uint8_t* ou
   const auto& patterns = lat.definition().beams;
   const std::int64_t nodes = lat.node_count();
   const bool dense = lat.definition().omitted.empty();
+  Progress* const caller = current_progress();
   for (int p = 0; p < static_cast<int>(patterns.size()); ++p) {
     const BeamPattern& b = patterns[static_cast<std::size_t>(p)];
     tbb::parallel_for(std::int64_t(0), c.v * c.w, [&](std::int64_t r) {
+      const ProgressScope scope(caller);
+      poll_progress();
       const std::int64_t j = r % c.v, k = r / c.v;
       if (dense) {
         // Nothing omitted: a row's beams are consecutive, and ball indices are the linear node indices.
@@ -119,7 +129,9 @@ void FilteredLattice::beam_mask(std::uint8_t* out) const {
     beam_mask_from(mask_.data(), out);
     return;
   }
-  require_memory(static_cast<std::uint64_t>(lattice_->ball_count()), "ball mask");
+  require_memory(static_cast<std::uint64_t>(lattice_->ball_count()),
+                 "a mask of the " + std::to_string(lattice_->ball_count()) + " balls (one byte each)",
+                 "query the filtered lattice without a mask (query_ball, contains, distance)");
   std::vector<std::uint8_t> balls(static_cast<std::size_t>(lattice_->ball_count()));
   ball_mask(balls.data());
   beam_mask_from(balls.data(), out);
@@ -162,7 +174,7 @@ void FilteredLattice::visit_with(const Ball& query, HitSink& sink, QueryMethod m
 }
 
 BallQueryResult FilteredLattice::query_ball(const Ball& query) const {
-  return detail::collect_hits([&](HitSink& sink) { visit(query, sink); });
+  return detail::collect_hits(query, [&](HitSink& sink) { visit(query, sink); });
 }
 
 bool FilteredLattice::touches(const Ball& query) const {

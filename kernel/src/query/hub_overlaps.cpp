@@ -288,7 +288,8 @@ HubOverlapReport check_hub_overlaps(const Lattice& lattice, std::size_t max_repo
     return report;  // not verified
   }
   if (all_hubs) {
-    require_memory(static_cast<std::uint64_t>(count) * bytes_per_hub(lattice), "clean check");
+    require_memory(static_cast<std::uint64_t>(count) * bytes_per_hub(lattice), "clean check of " + std::to_string(count) + " hubs",
+                   "check a smaller lattice of the same steps (the check of a steady lattice does not need every hub)");
     progress.set_total(count);
     std::vector<NodeId> ids(count);
     for (std::int64_t k = 0; k < count; ++k) ids[k] = lattice.ball_id(k);
@@ -349,7 +350,9 @@ HubOverlapReport check_hub_overlaps(const Lattice& lattice, std::size_t max_repo
     finish(report, max_reports);
     return report;  // not verified
   }
-  require_memory(2 * static_cast<std::uint64_t>(per_slab) * bytes_per_hub(lattice), "clean check");
+  require_memory(2 * static_cast<std::uint64_t>(per_slab) * bytes_per_hub(lattice),
+                 "clean check of 2 slabs of " + std::to_string(per_slab) + " hubs",
+                 "check a smaller lattice of the same steps (fewer groups per slab)");
   progress.set_total(work / 2);
   std::sort(pairs.begin(), pairs.end(), [](const SlabPair& x, const SlabPair& y) {
     return std::tie(x.k1, x.k2) < std::tie(y.k1, y.k2);

@@ -277,7 +277,16 @@ void LatticeQuery::visit(const Ball& query, HitSink& caller_sink, QueryMethod me
 
 
 BallQueryResult LatticeQuery::query_ball(const Ball& query, QueryMethod method) const {
-  return detail::collect_hits([&](HitSink& sink) { visit(query, sink, method); });
+  validate_query_ball(query, "query");
+  const std::int64_t sure = surely_hit(query);
+  if (static_cast<std::size_t>(sure) > detail::kUncheckedHits)
+    detail::require_result_memory(query, static_cast<std::uint64_t>(sure), "at least");
+  return detail::collect_hits(query, [&](HitSink& sink) { visit(query, sink, method); });
+}
+
+std::int64_t LatticeQuery::surely_hit(const Ball& query) const {
+  validate_query_ball(query, "query");
+  return detail::elements_surely_hit(impl_->state, query);
 }
 
 bool LatticeQuery::touches(const Ball& query, QueryMethod method) const {

@@ -11,6 +11,7 @@
 #include "steady/core/numeric_range.hpp"
 #include "steady/query/interference.hpp"
 #include "steady/core/memory_budget.hpp"
+#include "steady/core/progress.hpp"
 
 namespace steady {
 namespace {
@@ -118,7 +119,10 @@ double typical_element_size(const Lattice& lattice) {
 
 void contains(const InterferenceSource& source, const double* points, std::size_t n, std::uint8_t* inside) {
   validate_points(points, n, "points");
+  Progress* const caller = current_progress();
   tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
+    const ProgressScope scope(caller);
+    poll_progress();
     detail::FirstHitSink sink;
     source.visit(Ball{point_at(points, i, "points"), 0.0}, sink);
     inside[i] = sink.found ? 1 : 0;
@@ -130,7 +134,10 @@ void distance(const InterferenceSource& source, const double* points, std::size_
   if (std::isnan(bound) || bound < 0.0) fail_input("bound", "must be >= 0 (got " + std::to_string(bound) + ")");
   const double first = kDistanceFirstScale * source.element_scale();
   const Ball lattice_bound = source.bound();
+  Progress* const caller = current_progress();
   tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
+    const ProgressScope scope(caller);
+    poll_progress();
     const Vec3 p = point_at(points, i, "points");
     // Every element lies within `far` of p: no search goes beyond it (nor beyond the caller's bound).
     const double far = glm::length(p - lattice_bound.center) + lattice_bound.radius;
@@ -162,7 +169,10 @@ void raycast(const InterferenceSource& source, const double* origins, const doub
   }
   const Ball bound = source.bound();
   const double scale = source.element_scale();
+  Progress* const caller = current_progress();
   tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
+    const ProgressScope scope(caller);
+    poll_progress();
     const Vec3 d = point_at(directions, i, "directions");
     t[i] = first_hit(source, point_at(origins, i, "origins"), d / glm::length(d), max_distance, bound, scale);
   });
@@ -178,7 +188,10 @@ void voxelize(const InterferenceSource& source, const Vec3& lo, const Vec3& hi, 
   }
   const std::int64_t nx = shape[0], ny = shape[1], nz = shape[2];
   const Vec3 cell = (hi - lo) / Vec3(static_cast<double>(nx), static_cast<double>(ny), static_cast<double>(nz));
+  Progress* const caller = current_progress();
   tbb::parallel_for(std::int64_t(0), nx * ny, [&](std::int64_t row) {
+    const ProgressScope scope(caller);
+    poll_progress();
     const std::int64_t ix = row / ny, iy = row % ny;
     for (std::int64_t iz = 0; iz < nz; ++iz) {
       const Vec3 p = lo + (Vec3(static_cast<double>(ix), static_cast<double>(iy), static_cast<double>(iz)) + 0.5) * cell;

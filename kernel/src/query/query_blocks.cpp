@@ -124,7 +124,9 @@ void visit_blocks(const QueryState& q, Probe& probe) {
   Entry root;
   if (!evaluate(lattice_block, ~std::uint64_t(0), root)) return;
   stack.push_back(root);
+  std::int64_t popped = 0;
   while (!stack.empty()) {
+    if ((++popped & (kPollCandidates - 1)) == 0) poll_progress();  // blocks pruned without any candidate, too
     const Entry e = stack.back();
     stack.pop_back();
     const IndexBlock& b = e.block;

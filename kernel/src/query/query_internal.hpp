@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "query/element_evaluator.hpp"
+#include "steady/core/progress.hpp"
 #include "steady/query/interference.hpp"
 #include "steady/query/lattice_query.hpp"
 
@@ -122,6 +123,9 @@ class ScratchLease {
 };
 
 // Tests candidates exactly and reports hits to the sink.
+// A power of 2: a few microseconds of exact tests between two polls of the call's cancellation.
+constexpr std::int64_t kPollCandidates = 256;
+
 struct Probe {
   const QueryState& q;
   Ball query;     // the caller's ball: the exact tests
@@ -135,9 +139,10 @@ struct Probe {
     return std::min(inflated.radius, sink.reach() + (inflated.radius - query.radius));
   }
 
-  // Each returns false once the sink has asked to stop.
+  // Each returns false once the sink has asked to stop; every kPollCandidates candidates the call may be
+  // cancelled (Ctrl-C: a single query can test 10^9 of them).
   bool ball_geometry(const Ball& geometry, std::int64_t i, std::int64_t j, std::int64_t k, int n) {
-    ++candidates;
+    if ((++candidates & (kPollCandidates - 1)) == 0) poll_progress();
     const double d = distance_to_ball(query.center, geometry);
     if (!(d <= query.radius)) return true;
     const std::int64_t index = q.lattice.ball_index(NodeId{i, j, k, n});
@@ -153,7 +158,7 @@ struct Probe {
     return !stopped;
   }
   bool beam_geometry(const BeamGeometry& geometry, std::int64_t i, std::int64_t j, std::int64_t k, int p) {
-    ++candidates;
+    if ((++candidates & (kPollCandidates - 1)) == 0) poll_progress();
     const double d = distance_to_beam(query.center, geometry);
     if (!(d <= query.radius)) return true;
     const std::int64_t index = q.lattice.beam_index(BeamId{i, j, k, p});
@@ -200,6 +205,9 @@ void visit_rows(const QueryState& q, Probe& probe, bool reject);
 void visit_slabs(const QueryState& q, Probe& probe, bool reject);
 void visit_constant(const QueryState& q, Probe& probe);
 void visit_blocks(const QueryState& q, Probe& probe);
+
+// A lower bound of the elements a query ball meets, before visiting any (result_estimate.cpp).
+std::int64_t elements_surely_hit(const QueryState& q, const Ball& query);
 
 // Fills q.plan (query_plan.cpp).
 void detect_plan(QueryState& q);

@@ -20,7 +20,8 @@ void visit_naive(const QueryState& q, Probe& probe) {
   }
   const std::int64_t ring = dk_hi - dk_lo + 1;
   const std::int64_t slab_size = c.u * c.v * nodes;
-  require_memory(static_cast<std::uint64_t>(ring * slab_size) * sizeof(Ball), "naive query slab cache");
+  require_memory(static_cast<std::uint64_t>(ring * slab_size) * sizeof(Ball), "the naive query's slab cache",
+                 "use method 'auto' (blocks), which stores nothing per element");
   std::vector<Ball> cache(static_cast<std::size_t>(ring * slab_size));
   auto slot = [&](std::int64_t k) { return ((k % ring) + ring) % ring; };
   auto ball_at = [&](std::int64_t i, std::int64_t j, std::int64_t k, int n) -> const Ball& {

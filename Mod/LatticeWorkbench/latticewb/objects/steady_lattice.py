@@ -141,6 +141,7 @@ class SteadyLattice(StatelessProxy):
             obj.setEditorMode(name, 1)  # read only
         density.add_density_property(obj)
         update_visible_groups(obj)
+        property_checks.remember_good(obj)
 
     def onDocumentRestored(self, obj):
         self.ensure_properties(obj)
@@ -157,11 +158,13 @@ class SteadyLattice(StatelessProxy):
 
     def execute(self, obj):
         try:
+            property_checks.require_sensible(obj)  # names the property, where the kernel would name its own fields
             lattice = build_lattice(obj)
         except ValueError as error:
             FreeCAD.Console.PrintError("%s: %s\n" % (obj.Label, error))
             raise ValueError("%s: %s" % (obj.Label, error)) from None
         self.lattice = lattice  # kept for the view provider's preview (not saved: rebuilt on recompute)
+        property_checks.remember_good(obj)
         obj.AppliedOrder = applied_order(obj)
         obj.BallCount = lattice.ball_count
         obj.BeamCount = lattice.beam_count

@@ -72,4 +72,26 @@ class Progress {
 // A Progress that does nothing: for callers that do not ask for progress.
 Progress& no_progress();
 
+// The Progress of the long call running on this thread, for code too deep to be handed one (the query paths, the
+// filters' masks): set by a ProgressScope, nullptr outside any. Parallel loops pass it on to their workers by
+// opening a scope with the caller's in each body.
+Progress* current_progress();
+
+class ProgressScope {
+ public:
+  explicit ProgressScope(Progress* progress);
+  ~ProgressScope();
+  ProgressScope(const ProgressScope&) = delete;
+  ProgressScope& operator=(const ProgressScope&) = delete;
+
+ private:
+  Progress* previous_;
+};
+
+// Lets the current call be cancelled here: throws Cancelled once it is (and reports, on the creating thread).
+// Cheap (a thread-local read, then an atomic load or a clock read), but loops call it every few hundred elements.
+inline void poll_progress() {
+  if (Progress* p = current_progress()) p->check();
+}
+
 }  // namespace steady

@@ -116,7 +116,11 @@ class LatticeQuery {
   // particular order, until it returns false. Throws InvalidInput for a NaN or negative radius.
   void visit(const Ball& query, HitSink& sink, QueryMethod method = QueryMethod::Auto) const;
 
+  // Refuses (ResourceLimit, naming the radius) a result that surely exceeds the memory budget before visiting
+  // anything, and one that grows beyond it while collected.
   BallQueryResult query_ball(const Ball& query, QueryMethod method = QueryMethod::Auto) const;
+  // A lower bound of the number of elements query_ball(query) returns, without visiting any (its memory check).
+  std::int64_t surely_hit(const Ball& query) const;
   // True when some element meets the ball (stops at the first hit).
   bool touches(const Ball& query, QueryMethod method = QueryMethod::Auto) const;
 

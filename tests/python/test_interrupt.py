@@ -1,0 +1,79 @@
+"""Issue 16, item 2: every long call stops on Ctrl-C. A child process starts a call that takes far longer than the
+test waits, gets SIGINT about a second later, and must end with KeyboardInterrupt (not finish the call, not hang:
+the kernel polls Python's signal flag from the thread that called it, since the call runs without the GIL).
+
+A call that ignored the signal would finish first and raise KeyboardInterrupt only then (Python runs its handler
+between bytecodes): so each call takes minutes uninterrupted, and the child must be gone well before."""
+import os
+import signal
+import subprocess
+import sys
+
+import pytest
+
+PRELUDE = """
+import sys
+import steadylattice as sl
+t = sl.Similarity.translation
+T = (t((1, 0, 0)), t((0, 1, 0)), t((0, 0, 1)))
+def cubic(n, radius=0.2, beam_radius=0.1):
+    beams = [(0, 1, 0, 0, 0, beam_radius, beam_radius), (0, 0, 1, 0, 0, beam_radius, beam_radius),
+             (0, 0, 0, 1, 0, beam_radius, beam_radius)]
+    return sl.Lattice([((0, 0, 0), radius)], beams, n, *T)
+def bent(n):
+    U = sl.Similarity.swirl(0.0005, (0, 0, 1), (0, -2000, 0), 1.0001)
+    W = sl.Similarity.screw(0.0002, (0, 0, 1), (0, 0, 0), 1.0)
+    return sl.Lattice([((0, 0, 0), 0.2)], [(0, 1, 0, 0, 0), (0, 0, 1, 0, 0), (0, 0, 0, 1, 0)], n, U, t((0, 1, 0)), W)
+"""
+
+# (name, setup, the long call): one call each (Python itself stops between calls), every one of them minutes long
+# uninterrupted on the test machine, so that the old module, which finished the call before Python saw the signal,
+# fails the test.
+CALLS = [
+    ("query_ball", "L = cubic((1000, 1000, 1000))", "L.query_ball((500, 500, 500), 250.0)"),
+    ("query_ball_naive", "L = cubic((1000, 1000, 1000))", "L.query_ball((0, 0, 0), 1.0, method='naive')"),
+    ("distance_naive", "L = bent((300, 300, 300))", "L.distance([(242.0, 291.1, 216.9)] * 1000, method='naive')"),
+    ("contains_naive", "L = cubic((300, 300, 300))", "L.contains([(0.5, 0.5, 0.5)] * 1000, method='naive')"),
+    ("raycast_naive", "L = cubic((300, 300, 300))",
+     "L.raycast([(-5.0, 0.5, 0.5)] * 1000, [(1.0, 0.0, 0.0)] * 1000, method='naive')"),
+    ("voxelize", "L = bent((300, 300, 300))", "L.voxelize((0, 0, 0), (300, 300, 300), (1000, 1000, 1000))"),
+    ("filtered_query_ball", "F = cubic((1000, 1000, 1000)).filtered(sl.Gyroid(10.0, 0.5))",
+     "F.query_ball((500, 500, 500), 300.0)"),
+    ("materialize", "F = cubic((1000, 500, 500)).filtered(sl.LatticeInLattice(cubic((50, 50, 50), 1.0)))",
+     "F.materialize()"),
+    ("properties_brute_force", "L = cubic((200, 200, 200))", "L.properties_brute_force()"),
+    ("properties", "L = bent((150, 150, 150))", "L.properties(union_overlaps=False)"),
+    ("brep", "L = cubic((50, 50, 50))", "L.brep()"),
+    ("to_mesh", "L = cubic((100, 100, 100))", "L.to_mesh(tolerance=0.001)"),
+]
+# After SIGINT the child must be gone within this long: a few polls of 0.1 s, with ample room for a loaded machine.
+STOP_SECONDS = 30
+
+@pytest.mark.parametrize("name,setup,call", CALLS, ids=[c[0] for c in CALLS])
+def test_a_long_call_stops_on_sigint(name, setup, call):
+    code = PRELUDE + setup + """
+print("started", flush=True)
+try:
+    """ + call + """
+    print("finished", flush=True)
+except KeyboardInterrupt:
+    print("KeyboardInterrupt", flush=True)
+    sys.exit(130)
+"""
+    child = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert child.stdout.readline().strip() == "started", child.stderr.read()
+        try:
+            child.wait(timeout=1.0)  # a call that ends this soon is no test of an interrupt
+        except subprocess.TimeoutExpired:
+            pass
+        assert child.poll() is None, "%s ended before the signal: %s" % (name, child.stdout.read())
+        os.kill(child.pid, signal.SIGINT)
+        out, err = child.communicate(timeout=STOP_SECONDS)
+    finally:
+        if child.poll() is None:
+            child.kill()
+            child.wait()
+    assert "finished" not in out, "%s ran to its end despite SIGINT" % name
+    assert out.strip() == "KeyboardInterrupt", out + err
+    assert child.returncode == 130
