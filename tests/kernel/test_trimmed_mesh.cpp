@@ -13,6 +13,8 @@
 #include <map>
 #include <random>
 
+#include <tbb/global_control.h>
+
 #include "steady/core/errors.hpp"
 #include "steady/lattice/flat_lattice.hpp"
 #include "steady/lattice/presets.hpp"
@@ -183,20 +185,48 @@ TEST(TrimmedMesh, CrowdedAndHullModelHubs) {
   expect_trimmed(preset_lattice("BCC", {3, 3, 3}, 2.0, 0.25, 0.0), hexagon, 0.3, 0.01, "hull BCC, skin");
 }
 
+// The lattice vertex nearest height 3.3 within 1.5 of `center` across (a box's middle, not its edges).
+Vec3 vertex_to_graze(const TriangleMesh& lattice, const Vec3& center) {
+  Vec3 graze(0.0, 0.0, HUGE_VAL);
+  for (const Vec3& v : lattice.vertices)
+    if (std::hypot(v.x - center.x, v.y - center.y) < 1.5 && std::abs(v.z - 3.3) < std::abs(graze.z - 3.3)) graze = v;
+  return graze;
+}
+
 // A lattice vertex 1e-8 inside the wall the band is cut at: the Boolean leaves edges far shorter than a float's
 // resolution there, which must not reach the output as merged vertices or flat triangles.
 TEST(TrimmedMesh, AVertexGrazingTheWallStaysSafeInFloats) {
   const Lattice octet = preset_lattice("octet", {3, 3, 3}, 2.0, 0.3, 0.15);
   const TriangleMesh whole = lattice_mesh(octet, {0.01});
   const Vec3 center(2.9, 2.8, 0.0);
-  // The vertex nearest height 3.3 within the box's middle, not on its edges.
-  Vec3 graze(0.0, 0.0, HUGE_VAL);
-  for (const Vec3& v : whole.vertices)
-    if (std::hypot(v.x - center.x, v.y - center.y) < 1.5 && std::abs(v.z - 3.3) < std::abs(graze.z - 3.3)) graze = v;
+  const Vec3 graze = vertex_to_graze(whole, center);
   for (double skin : {0.0, 0.35}) {
     const Prism box{center, 3.3, 0.6, graze.z - 1e-8 + skin, 4, 0.3};
     expect_trimmed(octet, box, skin, 0.01, "grazing vertex, skin " + std::to_string(skin));
   }
+}
+
+// One thread or all of them give the same mesh, bit for bit, here with vertices moved off the wall and a skin.
+TEST(TrimmedMesh, SameMeshWhateverTheNumberOfThreads) {
+  const Lattice octet = preset_lattice("octet", {3, 3, 3}, 2.0, 0.3, 0.15);
+  const FlatLattice f = flatten(octet);
+  const TriangleMesh whole = lattice_mesh(f, {0.01});
+  const Vec3 center(2.9, 2.8, 0.0);
+  const Prism box{center, 3.3, 0.6, vertex_to_graze(whole, center).z - 1e-8 + 0.35, 4, 0.3};
+  const TriangleMesh outer = box.mesh(), inner = box.mesh(0.35);
+  TrimmedMeshRequest request;
+  request.body = &outer;
+  request.inner = &inner;
+  TriangleMesh one;
+  TrimmedMeshStats stats;
+  {
+    tbb::global_control single(tbb::global_control::max_allowed_parallelism, 1);
+    one = trimmed_lattice_mesh(f, {0.01}, request, &stats);
+  }
+  EXPECT_GT(stats.moved_clear, 0);
+  const TriangleMesh all = trimmed_lattice_mesh(f, {0.01}, request);
+  EXPECT_TRUE(one.vertices == all.vertices);
+  EXPECT_TRUE(one.triangles == all.triangles);
 }
 
 TEST(TrimmedMesh, BadBodiesNameTheParameter) {
