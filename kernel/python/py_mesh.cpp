@@ -98,6 +98,9 @@ steady::TriangleMesh lattice_mesh_of(const Lattice& lat, double tolerance, const
   stats["outside_hubs"] = s.outside_hubs;
   stats["band_triangles"] = s.band_triangles;
   stats["boolean_seconds"] = s.boolean_seconds;
+  stats["moved_clear"] = s.moved_clear;
+  stats["float_removed_triangles"] = s.float_removed_triangles;
+  stats["float_seconds"] = s.float_seconds;
   stats["check_seconds"] = s.check_seconds;
   stats["plan_seconds"] = s.plan_seconds;
   stats["classify_seconds"] = s.classify_seconds;
@@ -136,8 +139,10 @@ void bind_mesh(py::module_& m) {
       "tessellated once per scale level and placed as similar copies. progress: as for brep(). stats: None or a "
       "dict, filled with hubs, crowded_hubs, beams, distinct_hubs, templates, vertices, triangles, "
       "template_seconds, placing_seconds (and with a body inside_hubs, crossing_hubs, outside_hubs, "
-      "band_triangles, boolean_seconds, and the other phases: check_seconds, plan_seconds, classify_seconds, "
-      "pieces_seconds, join_seconds)." STEADY_BODY_DOC);
+      "band_triangles, moved_clear (band vertices within a float's resolution of the wall, moved off it), "
+      "float_removed_triangles (made flat by rounding to the floats of STL and 3MF, removed), "
+      "boolean_seconds, and the other phases: check_seconds, plan_seconds, classify_seconds, pieces_seconds, "
+      "float_seconds, join_seconds)." STEADY_BODY_DOC);
   lattice.def(
       "write_stl",
       [](const Lattice& lat, const std::string& path, double tolerance, const std::string& name,

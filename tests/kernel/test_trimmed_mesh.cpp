@@ -4,15 +4,21 @@
 #include <gtest/gtest.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Surface_mesh.h>
 
+#include <array>
+#include <map>
 #include <random>
+
+#include <tbb/global_control.h>
 
 #include "steady/core/errors.hpp"
 #include "steady/lattice/flat_lattice.hpp"
 #include "steady/lattice/presets.hpp"
+#include "steady/mesh/lattice_mesh.hpp"
 #include "steady/mesh/trimmed_mesh.hpp"
 #include "steady/query/lattice_query.hpp"
 #include "steady/query/queries.hpp"
@@ -68,6 +74,51 @@ struct Prism {
   }
 };
 
+// The mesh as an STL or 3MF reader sees it: every vertex rounded to a 32-bit float, vertices welded by those
+// coordinates. It must still be closed, 2-manifold, without flat triangles or self-intersections, in as many parts
+// as before rounding.
+void expect_float_safe(const TriangleMesh& mesh) {
+  std::map<std::array<float, 3>, std::size_t> weld;
+  std::vector<K::Point_3> points;
+  std::vector<std::size_t> to(mesh.vertices.size());
+  for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+    const Vec3& v = mesh.vertices[i];
+    const std::array<float, 3> f{static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)};
+    const auto [it, fresh] = weld.emplace(f, points.size());
+    if (fresh) points.emplace_back(f[0], f[1], f[2]);
+    to[i] = it->second;
+  }
+  TriangleMesh welded;
+  for (const K::Point_3& p : points) welded.vertices.emplace_back(p.x(), p.y(), p.z());
+  std::vector<std::vector<std::size_t>> polygons;
+  int flat = 0;
+  for (const Triangle& t : mesh.triangles) {
+    const std::size_t a = to[t[0]], b = to[t[1]], c = to[t[2]];
+    flat += a == b || b == c || c == a || CGAL::collinear(points[a], points[b], points[c]);
+    polygons.push_back({a, b, c});
+    welded.triangles.push_back({static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), static_cast<std::uint32_t>(c)});
+  }
+  EXPECT_EQ(flat, 0) << "flat triangles after rounding to floats";
+  EXPECT_TRUE(mesh_edge_report(welded).closed_manifold()) << "after rounding to floats";
+  const bool soup_is_mesh = CGAL::Polygon_mesh_processing::is_polygon_soup_a_polygon_mesh(polygons);
+  EXPECT_TRUE(soup_is_mesh) << "after rounding to floats, a vertex or edge is not manifold";
+  if (flat > 0 || !soup_is_mesh) return;
+  CGAL::Surface_mesh<K::Point_3> sm;
+  CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, polygons, sm);
+  EXPECT_FALSE(CGAL::Polygon_mesh_processing::does_self_intersect(sm)) << "after rounding to floats";
+  auto component = sm.add_property_map<CGAL::Surface_mesh<K::Point_3>::Face_index, std::size_t>("f:c").first;
+  CGAL::Surface_mesh<K::Point_3> unrounded;
+  std::vector<K::Point_3> exact;
+  for (const Vec3& v : mesh.vertices) exact.emplace_back(v.x, v.y, v.z);
+  std::vector<std::vector<std::size_t>> triangles;
+  for (const Triangle& t : mesh.triangles) triangles.push_back({t[0], t[1], t[2]});
+  CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(exact, triangles, unrounded);
+  auto unrounded_component = unrounded.add_property_map<CGAL::Surface_mesh<K::Point_3>::Face_index, std::size_t>("f:c").first;
+  EXPECT_EQ(CGAL::Polygon_mesh_processing::connected_components(sm, component),
+            CGAL::Polygon_mesh_processing::connected_components(unrounded, unrounded_component))
+      << "rounding to floats split or joined parts";
+}
+
 void expect_trimmed(const Lattice& lattice, const Prism& body, double skin, double tolerance, const std::string& what) {
   SCOPED_TRACE(what);
   const FlatLattice f = flatten(lattice);
@@ -86,13 +137,7 @@ void expect_trimmed(const Lattice& lattice, const Prism& body, double skin, doub
   CGAL::Surface_mesh<K::Point_3> sm;
   CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, polygons, sm);
   EXPECT_FALSE(CGAL::Polygon_mesh_processing::does_self_intersect(sm));
-  // Also once rounded to the 32-bit floats of STL and 3MF (the Boolean leaves slivers where the lattice grazes the
-  // body's faces).
-  for (const auto v : sm.vertices()) {
-    const K::Point_3 p = sm.point(v);
-    sm.point(v) = K::Point_3(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z()));
-  }
-  EXPECT_FALSE(CGAL::Polygon_mesh_processing::does_self_intersect(sm)) << "after rounding to floats";
+  expect_float_safe(mesh);
   // Monte Carlo over the body's bounding box with point membership.
   const LatticeQuery query(lattice);
   const LatticeSource source(query);
@@ -119,7 +164,8 @@ void expect_trimmed(const Lattice& lattice, const Prism& body, double skin, doub
   EXPECT_GE(volume, expected - 4.0 * sigma - tolerance * mesh_area(mesh));
   std::cout << what << ": " << mesh.triangles.size() << " triangles, hubs inside / crossing / outside "
             << stats.inside_hubs << " / " << stats.crossing_hubs << " / " << stats.outside_hubs << ", band "
-            << stats.band_triangles << " triangles, Booleans " << stats.boolean_seconds << " s; volume " << volume
+            << stats.band_triangles << " triangles, Booleans " << stats.boolean_seconds << " s, "
+            << stats.moved_clear << " vertices moved off the wall, " << stats.float_removed_triangles << " triangles removed after rounding to floats; volume " << volume
             << ", Monte Carlo " << expected << " +- " << sigma << "\n";
 }
 
@@ -137,6 +183,50 @@ TEST(TrimmedMesh, CrowdedAndHullModelHubs) {
   const Prism hexagon{{3.0, 3.0, 0.0}, 2.9, 0.45, 5.2, 6, 0.1};
   expect_trimmed(preset_lattice("octet", {3, 3, 3}, 2.0, 0.3, 0.24), hexagon, 0.0, 0.01, "thick octet");
   expect_trimmed(preset_lattice("BCC", {3, 3, 3}, 2.0, 0.25, 0.0), hexagon, 0.3, 0.01, "hull BCC, skin");
+}
+
+// The lattice vertex nearest height 3.3 within 1.5 of `center` across (a box's middle, not its edges).
+Vec3 vertex_to_graze(const TriangleMesh& lattice, const Vec3& center) {
+  Vec3 graze(0.0, 0.0, HUGE_VAL);
+  for (const Vec3& v : lattice.vertices)
+    if (std::hypot(v.x - center.x, v.y - center.y) < 1.5 && std::abs(v.z - 3.3) < std::abs(graze.z - 3.3)) graze = v;
+  return graze;
+}
+
+// A lattice vertex 1e-8 inside the wall the band is cut at: the Boolean leaves edges far shorter than a float's
+// resolution there, which must not reach the output as merged vertices or flat triangles.
+TEST(TrimmedMesh, AVertexGrazingTheWallStaysSafeInFloats) {
+  const Lattice octet = preset_lattice("octet", {3, 3, 3}, 2.0, 0.3, 0.15);
+  const TriangleMesh whole = lattice_mesh(octet, {0.01});
+  const Vec3 center(2.9, 2.8, 0.0);
+  const Vec3 graze = vertex_to_graze(whole, center);
+  for (double skin : {0.0, 0.35}) {
+    const Prism box{center, 3.3, 0.6, graze.z - 1e-8 + skin, 4, 0.3};
+    expect_trimmed(octet, box, skin, 0.01, "grazing vertex, skin " + std::to_string(skin));
+  }
+}
+
+// One thread or all of them give the same mesh, bit for bit, here with vertices moved off the wall and a skin.
+TEST(TrimmedMesh, SameMeshWhateverTheNumberOfThreads) {
+  const Lattice octet = preset_lattice("octet", {3, 3, 3}, 2.0, 0.3, 0.15);
+  const FlatLattice f = flatten(octet);
+  const TriangleMesh whole = lattice_mesh(f, {0.01});
+  const Vec3 center(2.9, 2.8, 0.0);
+  const Prism box{center, 3.3, 0.6, vertex_to_graze(whole, center).z - 1e-8 + 0.35, 4, 0.3};
+  const TriangleMesh outer = box.mesh(), inner = box.mesh(0.35);
+  TrimmedMeshRequest request;
+  request.body = &outer;
+  request.inner = &inner;
+  TriangleMesh one;
+  TrimmedMeshStats stats;
+  {
+    tbb::global_control single(tbb::global_control::max_allowed_parallelism, 1);
+    one = trimmed_lattice_mesh(f, {0.01}, request, &stats);
+  }
+  EXPECT_GT(stats.moved_clear, 0);
+  const TriangleMesh all = trimmed_lattice_mesh(f, {0.01}, request);
+  EXPECT_TRUE(one.vertices == all.vertices);
+  EXPECT_TRUE(one.triangles == all.triangles);
 }
 
 TEST(TrimmedMesh, BadBodiesNameTheParameter) {

@@ -106,6 +106,29 @@ std::vector<Side> TrimSurface::hubs(const MeshPlan& plan) const {
   return out;
 }
 
+std::vector<std::pair<std::size_t, Vec3>> TrimSurface::clear_places(const std::vector<Vec3>& points, double gap) const {
+  const Queries& s = *queries_;
+  std::vector<std::pair<std::size_t, Vec3>> moved;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Point p(points[i].x, points[i].y, points[i].z);
+    const auto [closest, face] = s.tree.closest_point_and_primitive(p);
+    const Vec3 c(closest.x(), closest.y(), closest.z());
+    const double d = std::sqrt(distance2(points[i], c));
+    if (d >= gap) continue;
+    Vec3 away = points[i] - c;
+    if (d < 1e-3 * gap) {  // on the surface, or too near for the direction to mean anything: its face's normal
+      const auto h = s.mesh.halfedge(face);
+      const Point& a = s.mesh.point(s.mesh.source(h));
+      const Point& b = s.mesh.point(s.mesh.target(h));
+      const Point& e = s.mesh.point(s.mesh.target(s.mesh.next(h)));
+      const auto n = CGAL::cross_product(b - a, e - a);
+      away = Vec3(n.x(), n.y(), n.z());
+    }
+    moved.emplace_back(i, c + gap * glm::normalize(away));
+  }
+  return moved;
+}
+
 std::vector<char> hubs_needed(const MeshPlan& plan, const std::vector<Side>& hubs) {
   std::vector<char> out(plan.hubs.size(), 0);
   for (std::size_t h = 0; h < plan.hubs.size(); ++h) out[h] = hubs[h] != Side::Outside;

@@ -4,7 +4,9 @@
 // surface, each element is then classified on its own (a hub's sphere patch, a beam's strip) by balls holding its
 // triangles, so that only the elements that may touch the surface go through the Boolean: a hub in reach
 // often has its sphere and most of its strips clear of the surface.
+#include <cstddef>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "mesh/mesh_plan.hpp"
@@ -31,6 +33,11 @@ class TrimSurface {
   // cap closing one of its loops, are clear of the surface. Needs the templates of the hubs
   // that hubs_needed names.
   BandSides elements(const MeshPlan& plan, const std::vector<Side>& hubs) const;
+
+  // The points closer than `gap` to the surface, each with a place `gap` from it on its side (away from its closest
+  // point, or along that face's outward normal when on the surface). So that no vertex grazes the wall the Boolean
+  // cuts at, which would leave edges below a float's resolution.
+  std::vector<std::pair<std::size_t, Vec3>> clear_places(const std::vector<Vec3>& points, double gap) const;
 
   struct Queries;  // CGAL's tree over the surface
 

@@ -3,7 +3,9 @@
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <chrono>
 #include <cstring>
 #include <set>
@@ -13,6 +15,7 @@
 
 #include "mesh/band_sides.hpp"
 #include "mesh/cgal_mesh.hpp"
+#include "mesh/float_safe.hpp"
 #include "mesh/mesh_plan.hpp"
 #include "steady/core/errors.hpp"
 
@@ -235,6 +238,24 @@ std::pair<Piece, Piece> pieces(const MeshPlan& plan, const BandSides& sides) {
   return {std::move(inside), std::move(band)};
 }
 
+// Moves the band's vertices that graze the surface clear of it, by a gap of 16 floats' resolution at the band's
+// largest coordinate, with their copies in the inside part and the kept caps' centers (the join and the caps'
+// removal match bit for bit). Returns how many moved.
+std::int64_t keep_clear(const TrimSurface& surface, Piece& inside, Piece& band) {
+  double largest = 0.0;
+  for (const Vec3& v : band.mesh.vertices) largest = std::max({largest, std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+  const auto moves = surface.clear_places(band.mesh.vertices, std::ldexp(largest, -19));
+  if (moves.empty()) return 0;
+  std::unordered_map<Key, Vec3, KeyHash> place;
+  for (const auto& [i, p] : moves) place.emplace(key(band.mesh.vertices[i]), p);
+  for (std::vector<Vec3>* points : {&band.mesh.vertices, &inside.mesh.vertices, &band.cap_centers})
+    for (Vec3& v : *points) {
+      const auto it = place.find(key(v));
+      if (it != place.end()) v = it->second;
+    }
+  return static_cast<std::int64_t>(moves.size());
+}
+
 }  // namespace
 
 TriangleMesh trimmed_lattice_mesh(const FlatLattice& f, const MeshOptions& options, const TrimmedMeshRequest& request,
@@ -268,14 +289,22 @@ TriangleMesh trimmed_lattice_mesh(const FlatLattice& f, const MeshOptions& optio
   clock = std::chrono::steady_clock::now();
   auto [inside, band] = pieces(plan, sides);
   stats.band_triangles = static_cast<std::int64_t>(band.mesh.triangles.size());
+  stats.moved_clear = keep_clear(surface, inside, band);
   stats.pieces_seconds = seconds_since(clock);
   clock = std::chrono::steady_clock::now();
-  const TriangleMesh band_done = band_boolean(band.mesh, band.cap_centers, request);
+  TriangleMesh band_done = band_boolean(band.mesh, band.cap_centers, request);
   stats.boolean_seconds = seconds_since(clock);
+  clock = std::chrono::steady_clock::now();
+  // Every writer stores floats: the band is rounded and repaired here, the rest (edges far above a float's
+  // resolution) only rounded; the join still matches bit for bit, both sides rounded alike.
+  stats.float_removed_triangles = make_float_safe(band_done);
+  round_to_floats(inside.mesh);
+  stats.float_seconds = seconds_since(clock);
   progress.advance(40);
 
   clock = std::chrono::steady_clock::now();
   TriangleMesh out = joined(std::move(inside.mesh), band_done, request.inner ? request.body : nullptr);
+  round_to_floats(out);  // the body's surface, appended as given
   stats.join_seconds = seconds_since(clock);
   stats.mesh = plan.stats;
   stats.mesh.vertices = static_cast<std::int64_t>(out.vertices.size());

@@ -24,11 +24,13 @@ struct TrimmedMeshRequest {
 struct TrimmedMeshStats {
   LatticeMeshStats mesh;
   std::int64_t inside_hubs = 0, crossing_hubs = 0, outside_hubs = 0;
-  std::int64_t band_triangles = 0;  // triangles that went through the Boolean
+  std::int64_t band_triangles = 0;           // triangles that went through the Boolean
+  std::int64_t moved_clear = 0;              // band vertices within float resolution of the wall, moved off it
+  std::int64_t float_removed_triangles = 0;  // of its result, made degenerate by rounding to floats and removed
   // Phases: checking the body's meshes, planning the hubs, classifying, placing the pieces, the Boolean (with its
-  // rounding), joining.
+  // rounding to double), rounding to floats with the band's repair, joining.
   double check_seconds = 0.0, plan_seconds = 0.0, classify_seconds = 0.0, pieces_seconds = 0.0;
-  double boolean_seconds = 0.0, join_seconds = 0.0;
+  double boolean_seconds = 0.0, float_seconds = 0.0, join_seconds = 0.0;
 };
 
 // InvalidInput naming "body" or "inner" for a mesh that is not closed, not outward or self-intersecting, and the
