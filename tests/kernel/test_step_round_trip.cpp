@@ -12,11 +12,13 @@
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include <unistd.h>
 
@@ -131,6 +133,27 @@ TEST(StepRoundTrip, SkinnedAssemblyInATiltedCylinderComesBackValid) {
   expect_same_solids(written.lattice, back[0].shape, "tilted cylinder's lattice through STEP");
   expect_same_solids(written.skin, back[1].shape, "tilted cylinder's skin through STEP");
   std::remove(path.c_str());
+}
+
+std::string file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+// The same part gives the same bytes whenever it is written: OpenCASCADE put the time of writing in the header.
+TEST(StepRoundTrip, TheSamePartWrittenTwiceGivesTheSameBytes) {
+  const TopoDS_Shape box = BRepPrimAPI_MakeBox(1.0, 2.0, 3.0).Shape();
+  const std::string a = temp_path("first.step"), b = temp_path("second.step");
+  write_step_assembly(a, {{"Box", box}});
+  std::this_thread::sleep_for(std::chrono::milliseconds(1100));  // the header's time stamp counts seconds
+  write_step_assembly(b, {{"Box", box}});
+  const std::string first = file_bytes(a), second = file_bytes(b);
+  EXPECT_FALSE(first.empty());
+  EXPECT_EQ(first, second) << "the STEP header differs between two writes";
+  std::remove(a.c_str());
+  std::remove(b.c_str());
 }
 
 TEST(StepRoundTrip, BadPathsAndNamesAreRefusedAndLeaveNoFile) {

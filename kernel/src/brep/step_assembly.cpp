@@ -2,6 +2,7 @@
 
 #include "steady/brep/brep_io.hpp"
 
+#include <APIHeaderSection_MakeHeader.hxx>
 #include <IFSelect_ReturnStatus.hxx>
 #include <Interface_Check.hxx>
 #include <Interface_CheckIterator.hxx>
@@ -10,6 +11,9 @@
 #include <XSControl_WorkSession.hxx>
 #include <Interface_Static.hxx>
 #include <Quantity_Color.hxx>
+#include <StepData_StepModel.hxx>
+#include <StepRepr_NextAssemblyUsageOccurrence.hxx>
+#include <TCollection_HAsciiString.hxx>
 #include <STEPCAFControl_Reader.hxx>
 #include <STEPCAFControl_Writer.hxx>
 #include <TDF_ChildIterator.hxx>
@@ -103,6 +107,19 @@ void collect(const Handle(XCAFDoc_ShapeTool)& shapes, const Handle(XCAFDoc_Color
   out.push_back(part);
 }
 
+// The same part gives the same bytes whenever it is written, as the 3MF packages do (beam_lattice_3mf.cpp): a
+// fixed time stamp in the header's FILE_NAME (OpenCASCADE writes the time of writing), and the assembly's
+// occurrences numbered from 1 in each file (OpenCASCADE counts them over the process: '1' in the first file
+// written, '2' in the second).
+void make_reproducible(const Handle(StepData_StepModel)& model) {
+  APIHeaderSection_MakeHeader header(model);
+  if (header.HasFn()) header.SetTimeStamp(new TCollection_HAsciiString("2020-01-01T00:00:00"));
+  int occurrence = 0;
+  for (int i = 1; i <= model->NbEntities(); ++i)
+    if (auto usage = Handle(StepRepr_NextAssemblyUsageOccurrence)::DownCast(model->Value(i)))
+      usage->SetId(new TCollection_HAsciiString(++occurrence));
+}
+
 }  // namespace
 
 void check_step_name(const std::string& name, const char* field) {
@@ -155,6 +172,7 @@ void write_step_assembly(const std::string& path, const std::vector<StepPart>& p
     ok = writer.Transfer(doc, STEPControl_AsIs, nullptr, occ.range());
     occ.finish();  // the last chance to stop: the file is written below
   }
+  if (ok) make_reproducible(writer.ChangeWriter().Model());
   // Written beside the target and renamed, so that a failed write leaves no partial file under the name.
   const std::string partial = path + ".partial";
   ok = ok && writer.Write(partial.c_str()) == IFSelect_RetDone && std::rename(partial.c_str(), path.c_str()) == 0;
