@@ -1,6 +1,8 @@
 // Core 3MF through lib3mf's C interface (Debian's lib3mf 1.8.1), and reading any 3MF back with it.
 #include <Model/COM/NMR_DLLInterfaces.h>
 
+#include <cstdint>
+#include <cstdio>
 #include <map>
 #include <stdexcept>
 
@@ -44,6 +46,31 @@ DWORD unit_code(const std::string& unit) {
   return it->second;
 }
 
+// A UUID of the production extension drawn from the mesh (FNV-1a over its name, vertices as written and
+// triangles) and `which` (build, object, item), in the RFC 9562 custom form (version 8): lib3mf drew them at random,
+// so two writes of one mesh differed.
+std::string content_uuid(const std::string& name, const std::vector<NMR::MODELMESHVERTEX>& vertices,
+                         const std::vector<NMR::MODELMESHTRIANGLE>& triangles, int which) {
+  std::uint64_t h[2] = {1469598103934665603ULL ^ static_cast<std::uint64_t>(which), 0x9e3779b97f4a7c15ULL};
+  auto mix = [&](const void* data, std::size_t bytes) {
+    const auto* c = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < bytes; ++i) {
+      h[0] = (h[0] ^ c[i]) * 1099511628211ULL;
+      h[1] = (h[1] ^ c[i] ^ (h[0] >> 29)) * 1099511628211ULL;
+    }
+  };
+  mix(name.data(), name.size());
+  mix(vertices.data(), vertices.size() * sizeof(NMR::MODELMESHVERTEX));
+  mix(triangles.data(), triangles.size() * sizeof(NMR::MODELMESHTRIANGLE));
+  h[0] = (h[0] & ~0xF000ULL) | 0x8000ULL;                      // version 8
+  h[1] = (h[1] & 0x3FFFFFFFFFFFFFFFULL) | 0x8000000000000000ULL;  // variant 10
+  char text[40];
+  std::snprintf(text, sizeof text, "%08x-%04x-%04x-%04x-%012llx", static_cast<unsigned>(h[0] >> 32),
+                static_cast<unsigned>((h[0] >> 16) & 0xFFFF), static_cast<unsigned>(h[0] & 0xFFFF),
+                static_cast<unsigned>(h[1] >> 48), static_cast<unsigned long long>(h[1] & 0xFFFFFFFFFFFFULL));
+  return text;
+}
+
 }  // namespace
 
 void write_3mf(const TriangleMesh& mesh, const std::string& path, const ThreeMfOptions& options) {
@@ -65,6 +92,12 @@ void write_3mf(const TriangleMesh& mesh, const std::string& path, const ThreeMfO
                                            triangles.data(), static_cast<DWORD>(triangles.size())),
         object.p, "setting the mesh");
   check(NMR::lib3mf_model_addbuilditem(model.p, object.p, nullptr, &item.p), model.p, "adding the build item");
+  check(NMR::lib3mf_model_setbuilduuidutf8(model.p, content_uuid(options.name, vertices, triangles, 0).c_str()),
+        model.p, "setting the build's UUID");
+  check(NMR::lib3mf_object_setuuidutf8(object.p, content_uuid(options.name, vertices, triangles, 1).c_str()),
+        object.p, "setting the object's UUID");
+  check(NMR::lib3mf_builditem_setuuidutf8(item.p, content_uuid(options.name, vertices, triangles, 2).c_str()),
+        item.p, "setting the build item's UUID");
   check(NMR::lib3mf_model_querywriter(model.p, "3mf", &writer.p), model.p, "getting a 3MF writer");
   check(NMR::lib3mf_writer_writetofileutf8(writer.p, file.temporary_path().c_str()), writer.p,
         "writing '" + path + "'");
