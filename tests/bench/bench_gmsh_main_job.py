@@ -1,9 +1,11 @@
-"""The main job's part meshed for analysis by gmsh (Debian's python3-gmsh): the STEP assembly the kernel writes
+"""A LatticePart meshed for analysis by gmsh (Debian's python3-gmsh): the STEP assembly the kernel writes
 (lattice and skin, two solids), imported by gmsh's OpenCASCADE, fragmented so the skin and the lattice share their
 faces (a conformal mesh), meshed into linear tetrahedra. Prints the STEP's size, gmsh's import, fragment and
 meshing times, the tetrahedra and the mesh's volume against the exact volume (the kernel's adaptive integration).
-Uses out/lattice_part.step when the main job has run (scripts/install.sh), else writes it first (about 90 s).
-Usage: bench_gmsh_main_job.py [mesh size in mm, default 1.0]"""
+Default: the main job's octet in a 17 x 17 x 13 mm box with a 1 mm skin (what tests/python/test_fea_mesh.py
+meshes); --long: the main job itself (out/lattice_part.step when the main job has run, else written first, about
+90 s). A mesher's failure is printed and the exit status is 1.
+Usage: bench_gmsh_main_job.py [--long] [mesh size in mm, default 1.0]"""
 import os
 import sys
 import tempfile
@@ -17,19 +19,36 @@ import steadylattice as sl
 SOURCE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
 
 
-def main_job_step():
+def box_brep(corner, size):
+    """A box body as BREP text, made by gmsh's own OpenCASCADE."""
+    gmsh.initialize(readConfigFiles=False)
+    gmsh.option.setNumber("General.Terminal", 0)
+    gmsh.model.occ.addBox(*corner, *size)
+    gmsh.model.occ.synchronize()
+    path = os.path.join(tempfile.mkdtemp(), "box.brep")
+    gmsh.write(path)
+    gmsh.finalize()
+    with open(path) as f:
+        return f.read()
+
+
+def part_step(whole_job):
+    """(STEP path, seconds to write it or None, trim stats or None) of the main job or of its small block."""
     saved = os.path.join(SOURCE, "out", "lattice_part.step")
-    if os.path.exists(saved):
+    if whole_job and os.path.exists(saved):
         return saved, None, None
     data = os.path.join(SOURCE, "tests", "kernel", "data")
     with open(os.path.join(data, "main_job_octet.json")) as f:
         lattice = sl.Lattice.from_json(f.read())
-    with open(os.path.join(data, "main_job_cylinder.brep")) as f:
-        body = f.read()
+    if whole_job:
+        with open(os.path.join(data, "main_job_cylinder.brep")) as f:
+            body, skin = f.read(), 1.2
+    else:
+        body, skin = box_brep((11.5, 11.5, 7.5), (17.0, 17.0, 13.0)), 1.0
     path = os.path.join(tempfile.mkdtemp(), "lattice_part.step")
     stats = {}
     start = time.time()
-    lattice.write_step(path, body=body, skin=1.2, stats=stats)
+    lattice.write_step(path, body=body, skin=skin, stats=stats)
     return path, time.time() - start, stats
 
 
@@ -48,12 +67,16 @@ def tetrahedra():
 
 
 def main():
-    size = float(sys.argv[1]) if len(sys.argv) > 1 and not sys.argv[1].startswith("--") else 1.0
-    step, write_seconds, stats = main_job_step()
+    whole_job = "--long" in sys.argv
+    sizes = [a for a in sys.argv[1:] if not a.startswith("--")]
+    size = float(sizes[0]) if sizes else 1.0
+    step, write_seconds, stats = part_step(whole_job)
     parts = sl.read_step(step)
     exact = sum(p["volume"] for p in parts)
-    print("main job STEP: %.1f MB, %s; parts %s%s" % (
-        os.path.getsize(step) / 1e6, "written in %.1f s" % write_seconds if write_seconds else "from the main job",
+    what = "main job" if whole_job else "main job's octet in a 17 mm box"
+    written = "written in %.1f s" % write_seconds if write_seconds else "from the main job"
+    print("%s STEP: %.1f MB, %s; parts %s%s" % (
+        what, os.path.getsize(step) / 1e6, written,
         ", ".join("%s: %d solid(s), %s" % (p["name"], p["solids"], "valid" if p["valid"] else "INVALID")
                   for p in parts),
         "; %d loose pieces given to the skin" % stats["skin_pieces"] if stats else ""))
@@ -70,14 +93,21 @@ def main():
     gmsh.option.setNumber("Mesh.MeshSizeMax", size)
     gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 12)
     start = time.time()
-    gmsh.model.mesh.generate(3)
+    try:
+        gmsh.model.mesh.generate(3)
+    except Exception as failure:  # gmsh raises a bare Exception with its last error
+        print("gmsh %s: import %.1f s, fragment %.1f s, meshing FAILED after %.1f s: %s"
+              % (gmsh.__version__, imported, fragmented, time.time() - start, failure))
+        gmsh.finalize()
+        return 1
     meshed = time.time() - start
     count, volume = tetrahedra()
     gmsh.finalize()
     print("gmsh %s: import %.1f s, fragment %.1f s, mesh (size %g mm, 12 a turn) %.1f s: %d tetrahedra, volume %.2f "
           "mm^3 against the exact %.2f (%+.2f %%)" % (gmsh.__version__, imported, fragmented, size, meshed, count,
                                                       volume, exact, 100.0 * (volume / exact - 1.0)))
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())
