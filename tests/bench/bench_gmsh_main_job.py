@@ -12,24 +12,13 @@ import tempfile
 import time
 
 import gmsh
-import numpy as np
 
 import steadylattice as sl
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from gmsh_parts import box_brep, tetrahedra_volume  # noqa: E402  (tests/common)
+
 SOURCE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
-
-
-def box_brep(corner, size):
-    """A box body as BREP text, made by gmsh's own OpenCASCADE."""
-    gmsh.initialize(readConfigFiles=False)
-    gmsh.option.setNumber("General.Terminal", 0)
-    gmsh.model.occ.addBox(*corner, *size)
-    gmsh.model.occ.synchronize()
-    path = os.path.join(tempfile.mkdtemp(), "box.brep")
-    gmsh.write(path)
-    gmsh.finalize()
-    with open(path) as f:
-        return f.read()
 
 
 def part_step(whole_job):
@@ -44,7 +33,7 @@ def part_step(whole_job):
         with open(os.path.join(data, "main_job_cylinder.brep")) as f:
             body, skin = f.read(), 1.2
     else:
-        body, skin = box_brep((11.5, 11.5, 7.5), (17.0, 17.0, 13.0)), 1.0
+        body, skin = box_brep(tempfile.mkdtemp(), (11.5, 11.5, 7.5), (17.0, 17.0, 13.0)), 1.0
     path = os.path.join(tempfile.mkdtemp(), "lattice_part.step")
     stats = {}
     start = time.time()
@@ -52,24 +41,12 @@ def part_step(whole_job):
     return path, time.time() - start, stats
 
 
-def tetrahedra():
-    tags, coords, _ = gmsh.model.mesh.getNodes()
-    coords = np.asarray(coords).reshape(-1, 3)
-    where = np.zeros(int(tags.max()) + 1, dtype=np.int64)
-    where[tags] = np.arange(len(tags))
-    count, volume = 0, 0.0
-    for _, _, nodes in zip(*gmsh.model.mesh.getElements(3)):
-        t = where[np.asarray(nodes, dtype=np.int64).reshape(-1, 4)]
-        a, b, c, d = (coords[t[:, i]] for i in range(4))
-        volume += np.abs(np.einsum("ij,ij->i", np.cross(b - a, c - a), d - a)).sum() / 6.0
-        count += len(t)
-    return count, volume
-
-
 def main():
     whole_job = "--long" in sys.argv
     sizes = [a for a in sys.argv[1:] if not a.startswith("--")]
     size = float(sizes[0]) if sizes else 1.0
+    gmsh.initialize(readConfigFiles=False)  # box_brep uses the session
+    gmsh.option.setNumber("General.Terminal", 0)
     step, write_seconds, stats = part_step(whole_job)
     parts = sl.read_step(step)
     exact = sum(p["volume"] for p in parts)
@@ -80,8 +57,6 @@ def main():
         ", ".join("%s: %d solid(s), %s" % (p["name"], p["solids"], "valid" if p["valid"] else "INVALID")
                   for p in parts),
         "; %d loose pieces given to the skin" % stats["skin_pieces"] if stats else ""))
-    gmsh.initialize(readConfigFiles=False)
-    gmsh.option.setNumber("General.Terminal", 0)
     start = time.time()
     gmsh.model.occ.importShapes(step)
     imported = time.time() - start
@@ -101,7 +76,7 @@ def main():
         gmsh.finalize()
         return 1
     meshed = time.time() - start
-    count, volume = tetrahedra()
+    count, volume = tetrahedra_volume()
     gmsh.finalize()
     print("gmsh %s: import %.1f s, fragment %.1f s, mesh (size %g mm, 12 a turn) %.1f s: %d tetrahedra, volume %.2f "
           "mm^3 against the exact %.2f (%+.2f %%)" % (gmsh.__version__, imported, fragmented, size, meshed, count,

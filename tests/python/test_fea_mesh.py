@@ -6,10 +6,10 @@ volume agrees with the exact volume within the chord error of its size. docs/fea
 import os
 
 import gmsh
-import numpy as np
 import pytest
 
 import steadylattice as sl
+from gmsh_parts import box_brep, tetrahedra_volume  # tests/common, on the path from conftest.py
 
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "kernel", "data")
 
@@ -20,34 +20,6 @@ def gmsh_session():
     gmsh.option.setNumber("General.Terminal", 0)
     yield gmsh
     gmsh.finalize()
-
-
-def box_brep(folder, corner, size):
-    """A box body as BREP text, made by gmsh's own OpenCASCADE."""
-    gmsh.model.add("body")
-    gmsh.model.occ.addBox(*corner, *size)
-    gmsh.model.occ.synchronize()
-    path = os.path.join(folder, "box.brep")
-    gmsh.write(path)
-    gmsh.model.remove()
-    with open(path) as f:
-        return f.read()
-
-
-def tetrahedra_volume():
-    """Number and summed volume of the model's linear tetrahedra (gmsh element type 4)."""
-    tags, coords, _ = gmsh.model.mesh.getNodes()
-    coords = np.asarray(coords).reshape(-1, 3)
-    where = np.zeros(int(tags.max()) + 1, dtype=np.int64)
-    where[tags] = np.arange(len(tags))
-    count, volume = 0, 0.0
-    for kind, _, nodes in zip(*gmsh.model.mesh.getElements(3)):
-        assert kind == 4, "only linear tetrahedra were asked for"
-        t = where[np.asarray(nodes, dtype=np.int64).reshape(-1, 4)]
-        a, b, c, d = (coords[t[:, i]] for i in range(4))
-        volume += np.abs(np.einsum("ij,ij->i", np.cross(b - a, c - a), d - a)).sum() / 6.0
-        count += len(t)
-    return count, volume
 
 
 def test_gmsh_meshes_a_crowded_skinned_part_from_its_step(gmsh_session, tmp_path):
