@@ -238,18 +238,21 @@ void check_properties(const Lattice& lat) {
   LatticePropertiesOptions sums_only;  // both sides sum hubs; the clean check is not what is compared here
   sums_only.check_clean = false;
   std::optional<LatticeProperties> brute;
+  std::string brute_refusal, fast_refusal;
   try {
     brute = lattice_properties_brute_force(lat, sums_only);
-  } catch (const InvalidInput&) {
+  } catch (const InvalidInput& e) {
+    brute_refusal = e.what();
   }
   std::optional<LatticeProperties> fast;
   try {
     fast = lattice_properties(lat, sums_only);
-  } catch (const InvalidInput&) {
+  } catch (const InvalidInput& e) {
+    fast_refusal = e.what();
   }
   if (brute.has_value() != fast.has_value())
     fuzz::finding(std::string("lattice_properties ") + (fast ? "accepts" : "refuses") + " a lattice the brute force " +
-                  (brute ? "accepts" : "refuses"));
+                  (brute ? "accepts" : "refuses") + ": " + fast_refusal + brute_refusal);
   if (!brute) return;
   const double d = property_difference(*brute, *fast);
   if (!(d <= 1e-7))

@@ -90,6 +90,26 @@ TEST(LatticeProperties, MatchBruteForceInTheHullModel) {
   }
 }
 
+TEST(LatticeProperties, ABallMayCrossTheMidPlaneOfABeamItLeavesBeforeIt) {
+  // Found by fuzz_lattice_queries: balls of radius 0.6 at spacing 1 reach past their beams' mid-planes, but beams
+  // of radius 0.55 leave them at 0.24 from the centre. The hubs end at the cut disks (the caps beyond lie inside
+  // the cone); the brute force summed them while the row sums refused the lattice. In closed form, a row of n
+  // balls is each ball's slab between its exit planes, the n - 1 cylinders between exit planes, and the two end
+  // caps beyond them.
+  const double R = 0.6, r = 0.55;
+  const int n = 5;
+  const Lattice row = Lattice::incremental({{Vec3(0.0), R}}, {{0, 0, 1, 0, 0, r, r}}, Counts{1, n, 1},
+                                           Similarity::translation({0, 0, 1}), Similarity::translation({1, 0, 0}),
+                                           Similarity::translation({0, 1, 0}));
+  EXPECT_TRUE(compare(row, "thick beams", 0));
+  const LatticeProperties fast = lattice_properties(row, sums_only());
+  const double x0 = std::sqrt(R * R - r * r);
+  const double slab = kPi * (2.0 * R * R * x0 - 2.0 / 3.0 * x0 * x0 * x0);
+  const double cap = kPi * (2.0 / 3.0 * R * R * R - R * R * x0 + x0 * x0 * x0 / 3.0);
+  const double exact = n * slab + (n - 1) * kPi * r * r * (1.0 - 2.0 * x0) + 2.0 * cap;
+  EXPECT_NEAR(fast.volume, exact, 1e-12 * exact);
+}
+
 TEST(LatticeProperties, TranslationalLatticesNeedOnlyBorderShapes) {
   // All steps translations: every interior hub and beam is a copy; the work must not grow with the counts.
   for (bool hull : {false, true}) {

@@ -115,15 +115,19 @@ inline MassMoments beam_moments(const Context& c, const SimilarityTransform& ta,
   const Vec3 d = B.center - A.center;
   const double L = glm::length(d);
   if (!(std::abs(ra - rb) < L)) fail_beam(p, "one end ball of a beam contains the other");
-  const double limit = 0.5 * L * (1.0 + kMidPlaneSlack);
-  if (A.radius > limit || B.radius > limit) fail_beam(p, "a node ball crosses the mid-plane of its beam");
   const Vec3 axis = d / L;
+  // As in validate_hub_shape: a node ball may cross the mid-plane (its cap beyond lies inside the cone, and the
+  // hub ends at the cut) as long as the beam leaves the ball before the mid-plane.
+  const HubStump at_a{axis, L, ra, rb, 0.0}, at_b{-axis, L, rb, ra, 0.0};
+  if (!(0.5 * L > stump_cap(A.radius, at_a).exit_position * (1.0 + kMidPlaneSlack)) ||
+      !(0.5 * L > stump_cap(B.radius, at_b).exit_position * (1.0 + kMidPlaneSlack)))
+    fail_beam(p, "a node ball holds the beam's whole mid-plane disk");
   const double sin_phi = (ra - rb) / L;
   if (L + rb * sin_phi < 0.5 * L || L - ra * sin_phi < 0.5 * L)
     fail_beam(p, "a beam end ball crosses the beam's mid-plane");
   ++c.beam_shapes;
-  return shifted(stump_contribution_alone(A.radius, {axis, L, ra, rb}).moments, A.center - c.P) +
-         shifted(stump_contribution_alone(B.radius, {-axis, L, rb, ra}).moments, B.center - c.P);
+  return shifted(stump_contribution_alone(A.radius, at_a).moments, A.center - c.P) +
+         shifted(stump_contribution_alone(B.radius, at_b).moments, B.center - c.P);
 }
 
 // A stump of node n's hub: its pattern, which end of it n is, and the offset to the other group.

@@ -207,9 +207,11 @@ struct FromBrickSink : HitSink {
 }  // namespace
 
 struct LatticeQuery::Impl {
-  const Lattice& lattice;     // as the caller gave it
+  // A copy (the definition and shared pointers: cheap), so that a query made from a temporary lattice stays
+  // valid; the Impl lives on the heap, so the state's reference survives moves of the LatticeQuery.
+  const Lattice lattice;
   detail::QueryState state;   // on lattice_for_paths(lattice)
-  explicit Impl(const Lattice& l) : lattice(l), state(lattice_for_paths(l)) {}
+  explicit Impl(const Lattice& l) : lattice(l), state(lattice_for_paths(lattice)) {}
   bool translates() const { return &state.lattice != &lattice; }
 };
 

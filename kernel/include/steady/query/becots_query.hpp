@@ -17,7 +17,7 @@ namespace steady {
 class BecotsLatticeQuery {
  public:
   // `lattice` must have been laid on `map` by becots_lattice (checked: its steps are the map's per-tile
-  // similarities, applied in the order W U V); it must outlive this object.
+  // similarities, applied in the order W U V).
   BecotsLatticeQuery(const Lattice& lattice, const BecotsMap& map);
 
   // Exactly the elements meeting the closed ball (touching counts), as LatticeQuery::query_ball.
@@ -26,7 +26,7 @@ class BecotsLatticeQuery {
   std::int64_t candidate_groups(const Ball& query) const;
 
  private:
-  const Lattice& lattice_;
+  Lattice lattice_;  // its own copy (cheap: the definition and shared pointers)
   std::vector<BecotsRangeFinder> layers_;  // layer k: the template's bounding balls raised by W^k
 };
 

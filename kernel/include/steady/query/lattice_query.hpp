@@ -99,7 +99,7 @@ struct BallQueryResult {
 
 class LatticeQuery {
  public:
-  // O(u + v + w): power tables and the condition checks. `lattice` must outlive the query object.
+  // O(u + v + w): power tables and the condition checks. The query keeps its own copy of `lattice`.
   explicit LatticeQuery(const Lattice& lattice);
   ~LatticeQuery();
   LatticeQuery(LatticeQuery&&) noexcept;
