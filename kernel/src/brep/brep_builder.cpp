@@ -33,6 +33,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "brep/pcurve_pieces.hpp"
 #include "brep/sphere_pcurve.hpp"
 #include "steady/lattice/beam_frustum.hpp"
 #include "lattice/circle_frames.hpp"
@@ -172,7 +173,7 @@ void build_sphere_face(const BRep_Builder& b, const Ball& ball, const HubPlaceme
       b.MakeEdge(e, ec.curve, tol);
       b.Add(e, ec.vertices[k].Oriented(TopAbs_FORWARD));
       b.Add(e, ec.vertices[(k + 1) % ec.params.size()].Oriented(TopAbs_REVERSED));
-      b.UpdateEdge(e, shape.pcurves[s][arc].curve, face, tol);
+      b.UpdateEdge(e, edge_pcurve(shape.pcurves[s][arc].curve, t0, t1), face, tol);
       b.Range(e, t0, t1);
       ec.edges.push_back(e);
     }
@@ -203,8 +204,11 @@ void build_sphere_face(const BRep_Builder& b, const Ball& ball, const HubPlaceme
   } else {
     stops.emplace_back(L.circles[L.north].crossing_v[0], own_vertex(L.north, 0));
   }
-  Handle(Geom_Circle) meridian = new Geom_Circle(gp_Ax2(pnt(ball.center), dir(-yw), dir(xw)), R);
-  Handle(Geom2d_Line) seam_right = line2d(kTwoPi, 0.0, 0.0, 1.0), seam_left = line2d(0.0, 0.0, 0.0, 1.0);
+  // The seam's circle starts at the south pole (t = latitude + pi/2), so that its ranges lie in [0, pi]: a STEP
+  // reader finds a circle's range from its vertices in [0, 2 pi), and a range below 0 came back shifted by 2 pi
+  // from the seam's lines, which it then dropped and rebuilt.
+  Handle(Geom_Circle) meridian = new Geom_Circle(gp_Ax2(pnt(ball.center), dir(-yw), dir(-zw)), R);
+  Handle(Geom2d_Line) seam_right = line2d(kTwoPi, -M_PI / 2, 0.0, 1.0), seam_left = line2d(0.0, -M_PI / 2, 0.0, 1.0);
   std::vector<TopoDS_Edge> seam;  // piece k joins stops[2k] and stops[2k+1]
   for (std::size_t k = 0; k + 1 < stops.size(); k += 2) {
     TopoDS_Edge e;
@@ -212,7 +216,7 @@ void build_sphere_face(const BRep_Builder& b, const Ball& ball, const HubPlaceme
     b.Add(e, stops[k].second.Oriented(TopAbs_FORWARD));
     b.Add(e, stops[k + 1].second.Oriented(TopAbs_REVERSED));
     b.UpdateEdge(e, seam_right, seam_left, face, tol);
-    b.Range(e, stops[k].first, stops[k + 1].first);
+    b.Range(e, stops[k].first + M_PI / 2, stops[k + 1].first + M_PI / 2);
     seam.push_back(e);
   }
   auto pole_edge = [&](const TopoDS_Vertex& v, double lat) {
@@ -1130,6 +1134,7 @@ LatticeBrep build_lattice_brep(const FlatLattice& lattice, SeamPreference seams,
     Progress part(progress, 40);
     pieces = build_brep_pieces(lattice, selection, cuts, part);
   }
+  give_edges_their_own_pcurves(pieces.faces);  // the Fuse of crowded hubs' cores splits edges
   LatticeBrep out;
   {
     Progress part(progress, 55);

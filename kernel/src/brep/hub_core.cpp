@@ -689,11 +689,12 @@ void add_seam_runs(HullCoreBuild& h, const Handle(Geom_SphericalSurface)& sphere
     return cap_margin(h.cones, std::cos(lat) * fr.x + std::sin(lat) * fr.z).margin < 0.0;
   };
   const Vec3 y = glm::cross(fr.z, fr.x);
-  Handle(Geom_Circle) meridian = new Geom_Circle(gp_Ax2(gp::Origin(), dir(-y), dir(fr.x)), radius);
+  // From the south pole (t = latitude + pi/2): ranges in [0, pi], as the builder's seams (see build_sphere_face).
+  Handle(Geom_Circle) meridian = new Geom_Circle(gp_Ax2(gp::Origin(), dir(-y), dir(-fr.z)), radius);
   std::vector<std::pair<double, TopoDS_Vertex>> stops;
   auto pole_vertex = [&](double lat) {
     TopoDS_Vertex v;
-    b.MakeVertex(v, meridian->Value(lat), kCoreTolerance);
+    b.MakeVertex(v, meridian->Value(lat + M_PI / 2), kCoreTolerance);
     return v;
   };
   stops.emplace_back(-M_PI / 2, pole_vertex(-M_PI / 2));
@@ -706,13 +707,13 @@ void add_seam_runs(HullCoreBuild& h, const Handle(Geom_SphericalSurface)& sphere
     b.MakeEdge(e, meridian, kCoreTolerance);
     b.Add(e, stops[k].second.Oriented(TopAbs_FORWARD));
     b.Add(e, stops[k + 1].second.Oriented(TopAbs_REVERSED));
-    b.Range(e, lo, hi);
+    b.Range(e, lo + M_PI / 2, hi + M_PI / 2);
     FaceRun up;
     up.edge = e;
-    up.pcurve = new Geom2d_Line(gp_Pnt2d(kTwoPi, 0.0), gp_Dir2d(0, 1));
-    up.pcurve_reversed = new Geom2d_Line(gp_Pnt2d(0.0, 0.0), gp_Dir2d(0, 1));
-    up.t_start = lo;
-    up.t_end = hi;
+    up.pcurve = new Geom2d_Line(gp_Pnt2d(kTwoPi, -M_PI / 2), gp_Dir2d(0, 1));
+    up.pcurve_reversed = new Geom2d_Line(gp_Pnt2d(0.0, -M_PI / 2), gp_Dir2d(0, 1));
+    up.t_start = lo + M_PI / 2;
+    up.t_end = hi + M_PI / 2;
     FaceRun down = up;
     down.orientation = TopAbs_REVERSED;
     std::swap(down.pcurve, down.pcurve_reversed);

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <unordered_set>
 
+#include "brep/pcurve_pieces.hpp"
 #include "brep/loose_pieces.hpp"
 #include "brep/trim_phases.hpp"
 #include "steady/core/errors.hpp"
@@ -145,6 +146,7 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
   // Assembly.
   clock = std::chrono::steady_clock::now();
   if (faces.empty()) fail_input("body", "nothing of the lattice lies inside the body");
+  give_edges_their_own_pcurves(faces);  // the Booleans' split edges (clipped and fused hubs) kept their parents'
   TopoDS_Shape shape;
   {
     Progress part(progress, budget.rest(weights.assemble));
