@@ -111,11 +111,8 @@ void bind_brep(py::module_& m) {
   lattice.def(
       "clean_check",
       [](const Lattice& lat, std::int64_t max_reported) {
-        steady::CleanReport r;
-        {
-          py::gil_scoped_release release;
-          r = steady::check_clean(lat, {max_reported});
-        }
+        // minutes on 10^7 elements: the check polls, so Ctrl-C stops it
+        const steady::CleanReport r = run_interruptible([&] { return steady::check_clean(lat, {max_reported}); });
         py::list issues;
         for (const steady::CleanIssue& i : r.issues)
           issues.append(py::dict(py::arg("kind") = steady::to_string(i.kind), py::arg("ball") = i.ball,

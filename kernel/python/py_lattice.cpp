@@ -124,10 +124,7 @@ void bind_lattice_contents(py::class_<Lattice>& cls) {
             py::array_t<double> centers({py::ssize_t(lat.ball_count()), py::ssize_t(3)});
             py::array_t<double> radii(py::ssize_t(lat.ball_count()));
             double *c = centers.mutable_data(), *r = radii.mutable_data();
-            {
-              py::gil_scoped_release release;
-              lat.balls(c, r);
-            }
+            run_interruptible([&] { lat.balls(c, r); });  // seconds at 10^8 balls: Ctrl-C stops it
             return py::make_tuple(centers, radii);
           },
           "(centers N x 3, radii N) of every ball, in the stable order.")
@@ -141,10 +138,7 @@ void bind_lattice_contents(py::class_<Lattice>& cls) {
             py::array_t<double> ra(n), rb(n);
             std::int64_t *pa = a.mutable_data(), *pb = b.mutable_data();
             double *pra = ra.mutable_data(), *prb = rb.mutable_data();
-            {
-              py::gil_scoped_release release;
-              lat.beams(pa, pb, pra, prb);
-            }
+            run_interruptible([&] { lat.beams(pa, pb, pra, prb); });
             return py::make_tuple(a, b, ra, rb);
           },
           "(a, b, ra, rb): indices into balls() of each beam's two balls and its two end radii, in the stable order.")

@@ -127,10 +127,8 @@ to check), 'overlap_count', 'overlaps' (up to max_reports of ((i,j,k,n), (i,j,k,
           "radius_scale_for_volume",
           [](const Lattice& lat, double target, bool check_clean, double tolerance) {
             const steady::RadiusScaleOptions o = scale_options(check_clean, tolerance);
-            py::gil_scoped_release release;
-            const steady::RadiusScaleSolution s = steady::radius_scale_for_volume(lat, target, o);
-            py::gil_scoped_acquire gil;
-            return solution_dict(s);
+            // tens of volume evaluations over every distinct hub: interruptible (Ctrl-C)
+            return solution_dict(run_interruptible([&] { return steady::radius_scale_for_volume(lat, target, o); }));
           },
           py::arg("target_volume"), py::arg("check_clean") = true, py::arg("tolerance") = 1e-10,
           "The radius scale reaching target_volume: a dict with 'scale', 'volume', 'evaluations', 'clean_verified'.")
@@ -138,8 +136,8 @@ to check), 'overlap_count', 'overlaps' (up to max_reports of ((i,j,k,n), (i,j,k,
           "scale_radii_for_volume",
           [](const Lattice& lat, double target, bool check_clean, double tolerance) {
             const steady::RadiusScaleOptions o = scale_options(check_clean, tolerance);
-            py::gil_scoped_release release;
-            return steady::with_radius_scale(lat, steady::radius_scale_for_volume(lat, target, o).scale);
+            return run_interruptible(
+                [&] { return steady::with_radius_scale(lat, steady::radius_scale_for_volume(lat, target, o).scale); });
           },
           py::arg("target_volume"), py::arg("check_clean") = true, py::arg("tolerance") = 1e-10,
           R"doc(
@@ -150,8 +148,8 @@ Raises ValueError naming target_volume when no clean lattice reaches it. radius_
           [](const Lattice& lat, double density, const py::object& envelope, bool check_clean) {
             const steady::RadiusScaleOptions o = scale_options(check_clean, 1e-10);
             const double env = envelope.is_none() ? steady::cell_envelope_volume(lat) : to_double(envelope, "envelope_volume");
-            py::gil_scoped_release release;
-            return steady::with_radius_scale(lat, steady::radius_scale_for_density(lat, density, env, o).scale);
+            return run_interruptible(
+                [&] { return steady::with_radius_scale(lat, steady::radius_scale_for_density(lat, density, env, o).scale); });
           },
           py::arg("relative_density"), py::arg("envelope_volume") = py::none(), py::arg("check_clean") = true,
           "A new Lattice whose volume is relative_density times envelope_volume (default: cell_envelope_volume()).")
@@ -159,8 +157,8 @@ Raises ValueError naming target_volume when no clean lattice reaches it. radius_
           "scale_radii_for_mass",
           [](const Lattice& lat, double mass, double density, bool check_clean) {
             const steady::RadiusScaleOptions o = scale_options(check_clean, 1e-10);
-            py::gil_scoped_release release;
-            return steady::with_radius_scale(lat, steady::radius_scale_for_mass(lat, mass, density, o).scale);
+            return run_interruptible(
+                [&] { return steady::with_radius_scale(lat, steady::radius_scale_for_mass(lat, mass, density, o).scale); });
           },
           py::arg("mass"), py::arg("density"), py::arg("check_clean") = true,
           "A new Lattice of the given mass at the given density (mass / density is the target volume).")

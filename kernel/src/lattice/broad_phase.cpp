@@ -1,9 +1,9 @@
 #include "steady/lattice/broad_phase.hpp"
 #include "steady/core/progress.hpp"
+#include "lattice/cancellable_sort.hpp"
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <array>
@@ -50,7 +50,10 @@ std::vector<std::pair<std::int64_t, std::int64_t>> overlapping_box_pairs(const s
   if (n < 2) return {};
   Vec3 lo = boxes[0].lo, hi = boxes[0].hi;
   std::vector<double> extents(n);
+  // The serial passes over the boxes take seconds at 10^7 boxes: each polls (Ctrl-C) every 2^16 boxes.
+  constexpr std::int64_t kPollEvery = (std::int64_t(1) << 16) - 1;
   for (std::int64_t i = 0; i < n; ++i) {
+    if ((i & kPollEvery) == 0) poll_progress();
     lo = glm::min(lo, boxes[i].lo);
     hi = glm::max(hi, boxes[i].hi);
     const Vec3 e = boxes[i].hi - boxes[i].lo;
@@ -67,6 +70,7 @@ std::vector<std::pair<std::int64_t, std::int64_t>> overlapping_box_pairs(const s
   std::vector<std::int64_t> large;
   std::vector<std::int64_t> entry_count(n + 1, 0);
   for (std::int64_t i = 0; i < n; ++i) {
+    if ((i & kPollEvery) == 0) poll_progress();
     const auto a = grid.coord(boxes[i].lo), b = grid.coord(boxes[i].hi);
     const std::int64_t cells = (b[0] - a[0] + 1) * (b[1] - a[1] + 1) * (b[2] - a[2] + 1);
     if (cells > kMaxCellsPerBox) {
@@ -88,11 +92,12 @@ std::vector<std::pair<std::int64_t, std::int64_t>> overlapping_box_pairs(const s
       for (std::int64_t y = a[1]; y <= b[1]; ++y)
         for (std::int64_t x = a[0]; x <= b[0]; ++x) entries[at++] = {Grid::key(x, y, z), i};
   });
-  tbb::parallel_sort(entries.begin(), entries.end());
-  poll_progress();
+  cancellable_sort(entries);  // keys (cell, box) have no ties: the same order as a sort that cannot be cancelled
   std::vector<std::int64_t> runs;
-  for (std::int64_t e = 0; e < static_cast<std::int64_t>(entries.size()); ++e)
+  for (std::int64_t e = 0; e < static_cast<std::int64_t>(entries.size()); ++e) {
+    if ((e & kPollEvery) == 0) poll_progress();
     if (e == 0 || entries[e].first != entries[e - 1].first) runs.push_back(e);
+  }
   runs.push_back(static_cast<std::int64_t>(entries.size()));
 
   tbb::enumerable_thread_specific<std::vector<Pair>> found;
@@ -118,6 +123,7 @@ std::vector<std::pair<std::int64_t, std::int64_t>> overlapping_box_pairs(const s
   std::vector<char> is_large(n, 0);
   for (std::int64_t i : large) is_large[i] = 1;
   for (std::size_t li = 0; li < large.size(); ++li) {
+    poll_progress();  // each large box against every box
     const std::int64_t i = large[li];
     for (std::int64_t j = 0; j < n; ++j) {
       if (j == i || (is_large[j] && j < i)) continue;

@@ -10,6 +10,7 @@
 #include "lattice/rank.hpp"
 #include "steady/lattice/any_order_layout.hpp"
 #include "steady/core/errors.hpp"
+#include "steady/core/progress.hpp"
 #include "steady/core/numeric_range.hpp"
 
 namespace steady {
@@ -344,11 +345,15 @@ std::uint64_t Lattice::listing_bytes() const {
 void Lattice::balls(double* centers, double* radii) const {
   const Counts& c = counts();
   const int nn = node_count();
+  // Listing 10^8 balls takes seconds: each row polls the caller's progress (Ctrl-C from Python).
+  Progress* const caller = current_progress();
   // Tasks of (j, k) rows of groups, each with one buffer for its rows' group transforms; a row's first ball
   // index comes from the rank of its first node.
   auto list_rows = [&](const tbb::blocked_range<std::int64_t>& rows) {
+    const ProgressScope scope(caller);
     std::vector<SimilarityTransform> groups(static_cast<std::size_t>(c.u));
     for (std::int64_t row = rows.begin(); row != rows.end(); ++row) {
+      poll_progress();
       const std::int64_t j = row % c.v, k = row / c.v;
       def_.layout->row_transforms(j, k, groups.data());
       std::int64_t linear = node_linear(NodeId{0, j, k, 0});
@@ -374,6 +379,7 @@ void Lattice::balls(double* centers, double* radii) const {
 
 void Lattice::beams(std::int64_t* start, std::int64_t* end, double* start_radius, double* end_radius) const {
   const Counts& c = counts();
+  Progress* const caller = current_progress();  // polled per row, as in balls()
   for (int p = 0; p < pattern_count(); ++p) {
     const BeamPattern& b = def_.beams[p];
     const PatternRange& r = pattern_ranges_[p];
@@ -382,8 +388,10 @@ void Lattice::beams(std::int64_t* start, std::int64_t* end, double* start_radius
     const double node_from = def_.nodes[b.from].radius, node_to = def_.nodes[b.to].radius;
     auto list_rows = [&](const tbb::blocked_range<std::int64_t>& rows) {
       // The group transforms of a row and of the row its beams end in (the radii as beam() gives them).
+      const ProgressScope scope(caller);
       std::vector<SimilarityTransform> here(static_cast<std::size_t>(c.u)), there(static_cast<std::size_t>(c.u));
       for (std::int64_t row = rows.begin(); row != rows.end(); ++row) {
+        poll_progress();
         const std::int64_t j = r.j0 + row % nj, k = r.k0 + row / nj;
         def_.layout->row_transforms(j, k, here.data());
         def_.layout->row_transforms(j + b.dj, k + b.dk, there.data());

@@ -16,6 +16,7 @@
 #include "steady/query/hub_overlaps.hpp"
 #include "steady/core/memory_budget.hpp"
 #include "steady/core/constants.hpp"
+#include "steady/core/progress.hpp"
 
 namespace steady {
 
@@ -106,11 +107,14 @@ RadiusScaledVolume::RadiusScaledVolume(const Lattice& lattice, const HubProperti
 
 void RadiusScaledVolume::Model::build_per_element() {
   per_element = true;
+  // Every ball and beam of a lattice without steady rows: seconds per 10^6 elements, so Ctrl-C is polled.
   for (std::int64_t q = 0; q < lattice.ball_count(); ++q) {
+    if ((q & 4095) == 0) poll_progress();
     const double R = lattice.ball(lattice.ball_id(q)).radius;
     balls += 4.0 / 3.0 * kPi * R * R * R;
   }
   for (std::int64_t q = 0; q < lattice.beam_count(); ++q) {
+    if ((q & 4095) == 0) poll_progress();
     const BeamId id = lattice.beam_id(q);
     const BeamGeometry g = lattice.beam(id);
     const Ball A = lattice.ball(lattice.beam_start(id)), B = lattice.ball(lattice.beam_end(id));
@@ -120,7 +124,10 @@ void RadiusScaledVolume::Model::build_per_element() {
     if (g.start.radius != g.end.radius) max_scale = std::min(max_scale, L / std::abs(g.start.radius - g.end.radius));
   }
   full_hubs.resize(static_cast<std::size_t>(lattice.ball_count()));
+  Progress* const caller = current_progress();
   tbb::parallel_for(std::int64_t(0), lattice.ball_count(), [&](std::int64_t q) {
+    const ProgressScope scope(caller);
+    if ((q & 1023) == 0) poll_progress();
     full_hubs[static_cast<std::size_t>(q)] = hub_shape(hub(lattice, lattice.ball_id(q)));
   });
 }
@@ -179,6 +186,7 @@ void RadiusScaledVolume::Model::build_from_sums() {
       std::vector<SimilarityTransform> u_powers(n.u);
       for (std::int64_t i = 0; i < n.u; ++i) u_powers[i] = c.u_pow(i);
       for (std::int64_t j = rj.lo; j < rj.hi; ++j) {
+        poll_progress();  // a row of distinct beam shapes each
         const SimilarityTransform vj = c.v_pow(j);
         const SimilarityTransform head = w_dk * c.v_pow(j + b.dj);
         for (std::int64_t i = ri.lo; i < ri.hi; ++i) add_beam(p, vj * u_powers[i], head * u_powers[i + b.di], along_k);
@@ -209,7 +217,10 @@ void RadiusScaledVolume::Model::build_from_sums() {
       for (std::int64_t j = 0; j < (j_steady ? 1 : n.v); ++j) full_jobs.push_back({node, i, j, i_steady, j_steady});
   }
   m.full_hubs.resize(full_jobs.size());
+  Progress* const caller = current_progress();
   tbb::parallel_for(std::size_t(0), full_jobs.size(), [&](std::size_t q) {
+    const ProgressScope scope(caller);
+    if ((q & 255) == 0) poll_progress();
     const FullJob& job = full_jobs[q];
     const std::vector<Incidence> all = incidences(c, job.node);
     std::vector<SimilarityTransform> other;
@@ -269,7 +280,10 @@ void RadiusScaledVolume::Model::build_hub_classes() const {
         for (const IndexClass& xk : index_classes(n.w, reach_k, true)) jobs.push_back({node, xi, xj, xk, i_steady, j_steady});
   }
   std::vector<HubClass> classes(jobs.size());
+  Progress* const caller = current_progress();
   tbb::parallel_for(std::size_t(0), jobs.size(), [&](std::size_t q) {
+    const ProgressScope scope(caller);
+    if ((q & 255) == 0) poll_progress();
     const ClassJob& job = jobs[q];
     std::vector<Incidence> present;
     std::vector<SimilarityTransform> other;
@@ -315,9 +329,13 @@ std::size_t RadiusScaledVolume::hub_shapes() const { return model_->full_hubs.si
 
 double RadiusScaledVolume::without_overlaps(double s) const {
   const Model& m = *model_;
+  // The solver evaluates the volume some tens of times, each over every distinct shape: polled per range.
+  Progress* const caller = current_progress();
   const double beams = tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, m.beams.size(), 4096), 0.0,
       [&](const tbb::blocked_range<std::size_t>& range, double sum) {
+        const ProgressScope scope(caller);
+        poll_progress();
         for (std::size_t k = range.begin(); k != range.end(); ++k) {
           const BeamShape& b = m.beams[k];
           sum += b.weight * (stump_volume_alone(s * b.node_a, s * b.radius_a, s * b.radius_b, b.length) +
@@ -331,9 +349,12 @@ double RadiusScaledVolume::without_overlaps(double s) const {
 
 bool RadiusScaledVolume::overlaps_at(double s) const {
   const Model& m = *model_;
+  Progress* const caller = current_progress();
   return tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, m.full_hubs.size(), 64), false,
       [&](const tbb::blocked_range<std::size_t>& range, bool any) {
+        const ProgressScope scope(caller);
+        poll_progress();
         for (std::size_t k = range.begin(); k != range.end() && !any; ++k) any = any_stump_caps_overlap(m.full_hubs[k], s);
         return any;
       },
@@ -344,10 +365,13 @@ double RadiusScaledVolume::operator()(double s) const {
   const Model& m = *model_;
   if (!overlaps_at(s)) return without_overlaps(s);
   std::call_once(m.classes_built, [&m] { m.build_hub_classes(); });
+  Progress* const caller = current_progress();
   const double hubs = tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, m.hubs.size(), 16), 0.0,
       [&](const tbb::blocked_range<std::size_t>& range, double sum) {
+        const ProgressScope scope(caller);
         for (std::size_t k = range.begin(); k != range.end(); ++k) {
+          poll_progress();  // each hub with overlapping caps is an adaptive quadrature
           if (!any_stump_caps_overlap(m.hubs[k].shape, s)) continue;
           HubShape h = m.hubs[k].shape;
           h.radius *= s;
@@ -480,7 +504,9 @@ RadiusScaleSolution radius_scale_for_volume(const Lattice& lattice, double targe
     out.volume = volume.without_overlaps(out.scale);
   }
   if (options.check_clean) {
-    const HubOverlapReport report = check_hub_overlaps(with_radius_scale(lattice, out.scale), 5);
+    Progress* const caller = current_progress();
+    const HubOverlapReport report =
+        check_hub_overlaps(with_radius_scale(lattice, out.scale), 5, caller ? *caller : no_progress());
     if (report.overlap_count > 0)
       fail_input("target_volume", number(target) + " needs radius scale " + number(out.scale) +
                                       ", where the lattice is not clean: " + report.describe(3));

@@ -12,6 +12,7 @@ import FreeCAD
 
 from latticewb.kernel import lattice_shape
 from latticewb.kernel.lattice_filter import GYROID_MODES, KINDS, filtered_lattice
+from latticewb.objects import property_checks
 from latticewb.utils import types
 from latticewb.utils.proxies import StatelessProxy, add_missing_properties
 
@@ -59,18 +60,25 @@ class LatticeFilter(StatelessProxy):
             obj.GyroidMode = "sheet"
         for name in ("BallCount", "BeamCount"):
             obj.setEditorMode(name, 1)
+        property_checks.remember_good(obj)
 
     def onDocumentRestored(self, obj):
         self.ensure_properties(obj)
 
+    def onChanged(self, obj, prop):
+        if hasattr(obj, "BeamCount"):  # the last property: not while ensure_properties adds them
+            property_checks.check_lattice_property(obj, prop)
+
     def execute(self, obj):
         try:
+            property_checks.require_sensible(obj)  # names the property, where the kernel would name its own fields
             filtered = filtered_lattice(obj)
             ball_mask, beam_mask = filtered.ball_mask(), filtered.beam_mask()
         except ValueError as error:
             FreeCAD.Console.PrintError("%s: %s\n" % (obj.Label, error))
             raise ValueError("%s: %s" % (obj.Label, error)) from None
         self.view = (filtered.lattice, ball_mask, beam_mask)  # for the view provider's preview
+        property_checks.remember_good(obj)
         obj.BallCount = int(ball_mask.sum())
         obj.BeamCount = int(beam_mask.sum())
         if obj.BallCount + obj.BeamCount <= lattice_shape.MAX_SOLID_ELEMENTS:

@@ -10,6 +10,7 @@ import tempfile
 import FreeCAD
 
 from latticewb.kernel import steady_lattice
+from latticewb.objects import feature_checks, property_checks
 from latticewb.utils import types
 from latticewb.utils.proxies import StatelessProxy, add_missing_properties
 
@@ -39,23 +40,24 @@ class LatticeMesh(StatelessProxy):
             obj.Tolerance = 0.01
         for name in ("TriangleCount", "Volume", "DistinctHubs"):
             obj.setEditorMode(name, 1)
+        property_checks.remember_good(obj)
 
     def onDocumentRestored(self, obj):
         self.ensure_properties(obj)
 
     def onChanged(self, obj, prop):
-        if prop == "Tolerance" and hasattr(obj, "Tolerance") and not obj.Tolerance.Value > 0.0:
-            FreeCAD.Console.PrintWarning("%s: Tolerance must be > 0 (got %g); set to 0.01 mm\n"
-                                         % (obj.Label, obj.Tolerance.Value))
-            obj.Tolerance = 0.01
+        if hasattr(obj, "DistinctHubs"):  # the last property: not while ensure_properties adds them
+            property_checks.check_lattice_property(obj, prop)
 
     def execute(self, obj):
         import Mesh
         import steadylattice
         from latticewb.utils import progress
-        if obj.Lattice is None or not types.is_lattice(obj.Lattice):
-            FreeCAD.Console.PrintError("%s: Lattice: link a SteadyLattice to mesh\n" % obj.Label)
-            raise ValueError("%s: Lattice: link a SteadyLattice to mesh" % obj.Label)
+        try:
+            property_checks.require_sensible(obj)  # names the property, where the kernel would name its own fields
+        except ValueError as error:
+            FreeCAD.Console.PrintError("%s: %s\n" % (obj.Label, error))
+            raise ValueError("%s: %s" % (obj.Label, error)) from None
         # The kernel streams the mesh into a binary STL that FreeCAD's Mesh reads natively: no per-triangle Python.
         handle, path = tempfile.mkstemp(suffix=".stl")
         os.close(handle)
@@ -66,6 +68,7 @@ class LatticeMesh(StatelessProxy):
                                                               progress=report, stats=stats)
             mesh = Mesh.Mesh(path)
         except ValueError as error:
+            error = feature_checks.named_kernel_error(error)
             FreeCAD.Console.PrintError("%s: %s\n" % (obj.Label, error))
             raise ValueError("%s: %s" % (obj.Label, error)) from None
         except steadylattice.Cancelled:
@@ -78,3 +81,4 @@ class LatticeMesh(StatelessProxy):
         obj.TriangleCount = stats["triangles"]
         obj.Volume = mesh.Volume
         obj.DistinctHubs = stats["distinct_hubs"]
+        property_checks.remember_good(obj)

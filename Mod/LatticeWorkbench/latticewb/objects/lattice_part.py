@@ -12,7 +12,7 @@ import FreeCAD
 import Part
 
 from latticewb.kernel.lattice_part import DANGLING, POLICIES, part_brep
-from latticewb.objects import density
+from latticewb.objects import density, feature_checks, property_checks
 from latticewb.utils import types
 from latticewb.utils.proxies import StatelessProxy, add_missing_properties
 
@@ -49,23 +49,25 @@ class LatticePart(StatelessProxy):
         for name in ("Volume", "FaceCount"):
             obj.setEditorMode(name, 1)
         density.add_density_property(obj)
+        property_checks.remember_good(obj)
 
     def onDocumentRestored(self, obj):
         self.ensure_properties(obj)
 
     def onChanged(self, obj, prop):
-        if prop == "Skin" and hasattr(obj, "Skin") and obj.Skin.Value < 0.0:
-            FreeCAD.Console.PrintWarning("%s: Skin must be >= 0 (got %g); set to 0\n" % (obj.Label, obj.Skin.Value))
-            obj.Skin = 0.0
+        if hasattr(obj, "Density"):  # the last property: not while ensure_properties adds them
+            property_checks.check_lattice_property(obj, prop)
 
     def execute(self, obj):
         import steadylattice
         from latticewb.utils import progress
         stats = {}
         try:
+            property_checks.require_sensible(obj)  # names the property, where the kernel would name its own fields
             with progress.LongOperation("Trimming %s" % obj.Label) as report:
                 text = part_brep(obj, report, stats)
         except ValueError as error:
+            error = feature_checks.named_kernel_error(error)
             FreeCAD.Console.PrintError("%s: %s\n" % (obj.Label, error))
             raise ValueError("%s: %s" % (obj.Label, error)) from None
         except steadylattice.Cancelled:
@@ -77,6 +79,7 @@ class LatticePart(StatelessProxy):
         # the kernel's adaptive integration: Shape.Volume's fixed Gauss rule is 1e-3 off on crowded spheres
         obj.Volume = stats.get("volume") or shape.Volume
         obj.FaceCount = len(shape.Faces)
+        property_checks.remember_good(obj)
         report_trim(obj.Label, stats)
 
 

@@ -1,4 +1,6 @@
-"""Checks of SteadyLattice properties: one check per kind of property says what is wrong with its value.
+"""Checks of SteadyLattice properties: one check per kind of property says what is wrong with its value. The
+features made from a lattice (LatticeFilter, LatticePart, LatticeMesh) go through the same mechanism with their own
+checks (feature_checks).
 
 The same checks act twice. As a value is set, nonsense is refused (the previous good value comes back) or clamped,
 with a message in the report view, so that a typo does not break the object. At recompute, a value that got in
@@ -7,6 +9,8 @@ error naming the property, before the kernel sees it and names its own internal 
 import math
 
 import FreeCAD
+
+from latticewb.objects import feature_checks
 
 _MIN_TAPER = -99.0  # % per cell: a taper of -100 % would shrink a cell to nothing
 _MAX_OFFSET = 1000000  # a beam pattern's cell offset: no lattice has more cells along a direction
@@ -80,8 +84,17 @@ def _beams_problem(obj):
     return None
 
 
+def _density_problem(obj):
+    value = obj.Density
+    return None if math.isfinite(value) and value > 0.0 else "must be a finite density > 0 g/cm^3 (got %g)" % value
+
+
 def problem(obj, prop):
     """What is wrong with the value of `prop` (None: nothing, or a property these checks do not cover)."""
+    if prop == "Density":
+        return _density_problem(obj)
+    if feature_checks.checked(obj):
+        return feature_checks.problem(obj, prop)
     if prop in ("CellSize", "NodeRadius"):
         return _length_problem(_value(obj, prop), True)
     if prop == "BeamRadius":
@@ -148,7 +161,7 @@ def require_sensible(obj):
         found = problem(obj, prop)
         if found:
             raise ValueError(_named(prop, found))
-    found = _span_problem(obj)
+    found = _span_problem(obj) if not feature_checks.checked(obj) else None
     if found:
         raise ValueError(_named(*found))
 
@@ -163,8 +176,8 @@ def _last_good(obj):
 
 
 # Properties no refusal restores (the result, and FreeCAD's own bookkeeping).
-_NOT_RESTORED = ("Label", "Label2", "Shape", "Proxy", "ExpressionEngine", "Visibility", "AppliedOrder", "BallCount",
-                 "BeamCount")
+_NOT_RESTORED = ("Label", "Label2", "Shape", "Mesh", "Proxy", "ExpressionEngine", "Visibility", "AppliedOrder",
+                 "BallCount", "BeamCount", "Volume", "FaceCount", "TriangleCount", "DistinctHubs")
 
 
 def remember_good(obj):
@@ -179,7 +192,7 @@ def _refuse(obj, prop, why):
     good = _last_good(obj)
     if prop in good:
         _message(obj, "%s; keeping %r" % (_named(prop, why), good[prop]))
-        setattr(obj, prop, good[prop])
+        feature_checks.restore(obj, prop, good[prop])
     else:
         _message(obj, _named(prop, why))
 
@@ -204,8 +217,10 @@ def _clamp(obj, prop):
 def check_lattice_property(obj, prop):
     """onChanged: refuses nonsense (the last good value comes back) or clamps it, with a message."""
     found = problem(obj, prop)
-    if found:
+    if found and feature_checks.refused_when_set(obj, prop):
         return _refuse(obj, prop, found)
+    if found:
+        return  # a link: said at recompute
     if _clamp(obj, prop):
         return
     if prop not in _NOT_RESTORED and prop in obj.PropertiesList:
