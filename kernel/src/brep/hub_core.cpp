@@ -61,6 +61,7 @@
 #include "steady/lattice/convex_distance.hpp"
 #include "steady/core/errors.hpp"
 #include "steady/properties/hub_properties.hpp"
+#include "brep/cusp_tolerance.hpp"
 #include "brep/sphere_layout.hpp"
 
 namespace steady {
@@ -936,6 +937,7 @@ std::shared_ptr<const HubCore> build_envelope_core(const std::vector<CoreStump>&
   for (TopoDS_Face& f : h.cone_faces) h.builder.Add(out->faces, f);
   for (TopoDS_Face& f : h.sphere_faces) h.builder.Add(out->faces, f);
   out->face_count = static_cast<std::int64_t>(h.cone_faces.size() + h.sphere_faces.size());
+  widen_cusp_vertices(out->faces);  // tangent exit caps: see cusp_tolerance.hpp
   if (rho == 1.0) return out;  // the hull model: built in place
   gp_Trsf scale;
   scale.SetScale(gp::Origin(), rho);
@@ -1123,6 +1125,9 @@ std::shared_ptr<const HubCore> fuse_core(const std::vector<CoreStump>& stumps, c
     TopExp_Explorer x(t, TopAbs_EDGE);
     out->collars.push_back(TopoDS::Edge(x.Current()));
   }
+  // Tangent exit caps (an octet at beam/node 0.5) leave the sphere's loop touching itself in cusps, valid or not
+  // by luck once written as text: see cusp_tolerance.hpp.
+  widen_cusp_vertices(out->faces);
   return out;
 }
 
