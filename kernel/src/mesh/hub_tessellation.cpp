@@ -190,7 +190,7 @@ struct RadialHub {
     return best;
   }
   double radius(const Vec3& w) const { return reach(piece(w), w); }
-  // How far point p lies outside the hub (ball and stumps up to their collars): > 0 only outside every piece, where
+  // How far point p lies outside the hub (the ball and the stumps' cones): > 0 only outside every piece, where
   // it is the exact distance to the nearest one; <= 0 inside some piece. A chord across a concave crease (a cone
   // meeting the sphere, or two cones) lies outside, and the distance of the triangle's plane to the surface point
   // along the chord's direction misses it when the triangle stands steep: 142 edge midpoints of the main job's
@@ -204,8 +204,8 @@ struct RadialHub {
       // Below the plane where the cone touches its end ball the ball covers; beyond the collar the beam goes on (the
       // strips continue the cone), so the cone counts there too.
       if (x < s.end_radius * s.sin_phi) continue;
-      const double y = glm::length(p - x * axis), c = std::sqrt((1.0 - s.sin_phi) * (1.0 + s.sin_phi));
-      d = std::min(d, c * y + s.sin_phi * x - s.end_radius);  // signed distance to the cone's generator line
+      const double cos_phi = std::sqrt((1.0 - s.sin_phi) * (1.0 + s.sin_phi));
+      d = std::min(d, cos_phi * (glm::length(p - x * axis) - s.radius_at(x)));  // to the cone's generator line
     }
     return d;
   }
@@ -347,13 +347,12 @@ std::vector<Triangle> refined_triangulation(std::vector<Vec3>& directions, std::
     if (round == kRefinementRounds) return triangles;
     std::map<std::array<double, 3>, Vec3> added;
     for (const Triangle& t : triangles) {
-      const Vec3 p0 = position[t[0]];
-      const Vec3 normal = glm::cross(position[t[1]] - p0, position[t[2]] - p0);
+      const Vec3 &q0 = position[t[0]], &q1 = position[t[1]], &q2 = position[t[2]];
+      const Vec3 normal = glm::cross(q1 - q0, q2 - q0);
       const double area2 = glm::length(normal);
       if (!(area2 > 0.0)) continue;
       double worst = tolerance;
       Vec3 at(0.0);
-      const Vec3 &q0 = position[t[0]], &q1 = position[t[1]], &q2 = position[t[2]];
       const std::array<Vec3, 4> samples{(q0 + q1 + q2) / 3.0, 0.5 * (q0 + q1), 0.5 * (q1 + q2), 0.5 * (q2 + q0)};
       for (const Vec3& point : samples) {
         // The sample's direction from its point (not from the sum of the corners' directions, which names the same
@@ -361,7 +360,7 @@ std::vector<Triangle> refined_triangulation(std::vector<Vec3>& directions, std::
         // exactly the same new direction, never two a rounding apart, which the hull would not both keep.
         const Vec3 w = glm::normalize(point);
         if (in_hole(w)) continue;
-        const double error = std::max(std::abs(glm::dot(radius(w) * w - p0, normal)) / area2, outside(point));
+        const double error = std::max(std::abs(glm::dot(radius(w) * w - q0, normal)) / area2, outside(point));
         if (error > worst) worst = error, at = w;
       }
       if (worst > tolerance) added.emplace(std::array<double, 3>{at.x, at.y, at.z}, at);
