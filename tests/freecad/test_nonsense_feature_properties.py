@@ -8,6 +8,7 @@ import unittest
 import FreeCAD
 
 from latticewb import api
+from property_editing import Warnings, same
 from latticewb.objects import feature_checks
 
 NAN = float("nan")
@@ -72,27 +73,9 @@ def result(obj):
     return obj.Mesh.CountFacets if hasattr(obj, "Mesh") else obj.Shape.Volume
 
 
-def same(a, b):
-    """Property values compared, NaN equal to NaN (a restored value must not compare equal to the nonsense)."""
-    return repr(a) == repr(b)
-
-
 def put_back(obj, prop, value):
     """A good value again, as a user would set it (an enumeration needs its choices first)."""
     feature_checks.restore(obj, prop, value)
-
-
-class Warnings:
-    """The report view's warnings while inside the block."""
-
-    def __enter__(self):
-        self.texts = []
-        self._print = FreeCAD.Console.PrintWarning
-        FreeCAD.Console.PrintWarning = self.texts.append
-        return self
-
-    def __exit__(self, *exc):
-        FreeCAD.Console.PrintWarning = self._print
 
 
 class NonsenseFeaturePropertiesTest(unittest.TestCase):

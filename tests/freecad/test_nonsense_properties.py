@@ -7,6 +7,7 @@ import unittest
 import FreeCAD
 
 from latticewb import api
+from property_editing import Warnings, same
 
 NAN = float("nan")
 
@@ -29,24 +30,6 @@ ROWS = [
 
 def nonsense(obj, value):
     return value(obj) if callable(value) else value
-
-
-def same(a, b):
-    """Property values compared, NaN equal to NaN (a restored value must not compare equal to the nonsense)."""
-    return repr(a) == repr(b)
-
-
-class Warnings:
-    """The report view's warnings while inside the block."""
-
-    def __enter__(self):
-        self.texts = []
-        self._print = FreeCAD.Console.PrintWarning
-        FreeCAD.Console.PrintWarning = self.texts.append
-        return self
-
-    def __exit__(self, *exc):
-        FreeCAD.Console.PrintWarning = self._print
 
 
 class NonsensePropertiesTest(unittest.TestCase):
