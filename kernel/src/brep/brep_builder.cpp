@@ -1138,7 +1138,6 @@ LatticeBrep build_lattice_brep(const FlatLattice& lattice, SeamPreference seams,
     Progress part(progress, 40);
     pieces = build_brep_pieces(lattice, selection, cuts, part);
   }
-  give_edges_their_own_pcurves(pieces.faces);  // the Fuse of crowded hubs' cores splits edges
   LatticeBrep out;
   {
     Progress part(progress, 55);

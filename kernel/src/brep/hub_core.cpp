@@ -62,6 +62,7 @@
 #include "steady/core/errors.hpp"
 #include "steady/properties/hub_properties.hpp"
 #include "brep/cusp_tolerance.hpp"
+#include "brep/pcurve_pieces.hpp"
 #include "brep/sphere_layout.hpp"
 
 namespace steady {
@@ -1125,6 +1126,8 @@ std::shared_ptr<const HubCore> fuse_core(const std::vector<CoreStump>& stumps, c
     TopExp_Explorer x(t, TopAbs_EDGE);
     out->collars.push_back(TopoDS::Edge(x.Current()));
   }
+  // The Fuse kept the parents' pcurves on split edges (see pcurve_pieces.hpp), once per distinct core.
+  give_edges_their_own_pcurves(out->faces);
   // Tangent exit caps (an octet at beam/node 0.5) leave the sphere's loop touching itself in cusps, valid or not
   // by luck once written as text: see cusp_tolerance.hpp.
   widen_cusp_vertices(out->faces);

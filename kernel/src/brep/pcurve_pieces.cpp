@@ -5,6 +5,7 @@
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Edge.hxx>
+#include <TopoDS_Face.hxx>
 
 #include <algorithm>
 
@@ -24,10 +25,11 @@ Handle(Geom2d_BSplineCurve) edge_pcurve(const Handle(Geom2d_BSplineCurve)& curve
   return piece;
 }
 
-int give_edges_their_own_pcurves(const std::vector<TopoDS_Face>& faces) {
+int give_edges_their_own_pcurves(const TopoDS_Shape& shape) {
   const BRep_Builder builder;
   int replaced = 0;
-  for (const TopoDS_Face& face : faces) {
+  for (TopExp_Explorer f(shape, TopAbs_FACE); f.More(); f.Next()) {
+    const TopoDS_Face& face = TopoDS::Face(f.Current());
     for (TopExp_Explorer e(face, TopAbs_EDGE); e.More(); e.Next()) {
       const TopoDS_Edge& edge = TopoDS::Edge(e.Current());
       // Seams (two pcurves on the face) are lines here: nothing to cut.

@@ -6,18 +6,17 @@
 // (cubic, up to 1e-2 off; the main job's lattice volume came back 1.7e-6 off). Each edge's own piece is also all a
 // file needs to store.
 #include <Geom2d_BSplineCurve.hxx>
-#include <TopoDS_Face.hxx>
-
-#include <vector>
+#include <TopoDS_Shape.hxx>
 
 namespace steady {
 
 // The part of `curve` on [t0, t1], with the same parameter: `curve` itself when the range spans it.
 Handle(Geom2d_BSplineCurve) edge_pcurve(const Handle(Geom2d_BSplineCurve)& curve, double t0, double t1);
 
-// Replaces, on every edge of the faces, a B-spline pcurve longer than the edge's range by the edge's own piece
-// (the same points: the geometry does not change). For faces made by OpenCASCADE's Booleans, which keep the
-// parent's pcurve on each piece of a split edge. Returns how many pcurves were replaced.
-int give_edges_their_own_pcurves(const std::vector<TopoDS_Face>& faces);
+// Replaces, on every edge of the faces of `shape`, a B-spline pcurve longer than the edge's range by the edge's
+// own piece (the same points: the geometry does not change). For faces made by OpenCASCADE's Booleans (the Fuse of
+// a crowded hub's core, the trim's clipped hubs), which keep the parent's pcurve on each piece of a split edge.
+// Returns how many pcurves were replaced.
+int give_edges_their_own_pcurves(const TopoDS_Shape& shape);
 
 }  // namespace steady

@@ -138,6 +138,7 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
     const Clusters clusters = group_clusters(built.band, plan);
     const ClipContext c{f, frustums, options, bodies, roles, plan, clusters, built.band, unite};
     const std::vector<TopoDS_Face> kept = band_part(c, built, seams, weights, budget, stats);
+    for (const TopoDS_Face& face : kept) give_edges_their_own_pcurves(face);  // the Booleans kept parents' pcurves
     faces.insert(faces.end(), kept.begin(), kept.end());
   } else if (unite) {
     for (TopExp_Explorer x(bodies.skin->skin, TopAbs_FACE); x.More(); x.Next()) faces.push_back(TopoDS::Face(x.Current()));
@@ -146,7 +147,6 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
   // Assembly.
   clock = std::chrono::steady_clock::now();
   if (faces.empty()) fail_input("body", "nothing of the lattice lies inside the body");
-  give_edges_their_own_pcurves(faces);  // the Booleans' split edges (clipped and fused hubs) kept their parents'
   TopoDS_Shape shape;
   {
     Progress part(progress, budget.rest(weights.assemble));
