@@ -246,6 +246,59 @@ TEST(HubCore, TangentCapsCoreSurvivesItsBrepText) {
   EXPECT_NEAR(shape_volume(read) / shape_volume(solid), 1.0, 1e-12);
 }
 
+// A hub of the 3 x 3 x 3 dense octet at beam/node 0.9 with a screw of 0.01 rad a layer (bench_crowded_hubs), in its
+// canonical frame to the last digit. Four of its cylinders meet at one point in the exact octet; the screw splits
+// that point, and on two cylinders a neighbour stayed active for less than the vertex tolerance. That piece, an arc
+// from a vertex back to itself, was made the whole ellipse: a wire running around its cylinder twice (negative
+// area), so the core went to the Fuse (6 s instead of 0.01 s). Such pieces are dropped (cone_envelope.cpp).
+TEST(HubCore, NeighbourActiveForLessThanTheVertexToleranceLeavesNoEdge) {
+  const std::vector<Vec3> directions = {
+      {0, 0, 1},
+      {0.8660254037844386, 0, 0.50000000000000022},
+      {0.28867513459481298, -0.81649658092772626, 0.49999999999999983},
+      {0.57735026918962573, 0.81649658092772603, -5.5511151231257827e-17},
+      {-0.57735026918962573, -0.81649658092772603, -4.4408920985006262e-16},
+      {1.1102230246251565e-16, 1.1102230246251565e-16, -1},
+      {-0.28001632685381056, 0.82855831539336955, 0.48485252880417307},
+      {0.28867513459481281, -0.81649658092772592, -0.50000000000000022},
+      {-0.8631099801266584, 0.0040617995359694126, -0.50499966731700829},
+      {-0.86599580466683013, 0.012349703607385853, 0.4998987408668471},
+      {0.86602540378443882, -5.5511151231257839e-17, -0.5},
+      {-0.2829878913276106, 0.81235413782876043, -0.50990058650137304}};
+  std::vector<CoreStump> stumps;
+  for (const Vec3& d : directions) {
+    CoreStump s;
+    s.direction = d;
+    s.end_radius = 0.90000000000000002;
+    s.exit = std::sqrt(1.0 - s.end_radius * s.end_radius);
+    stumps.push_back(s);
+  }
+  const auto core = build_hub_core(stumps, CoreKind::Transversal,
+                                   core_collars(stumps, CoreKind::Transversal, kMaxCollarPosition));
+  EXPECT_FALSE(core->fused);
+  const TopoDS_Shape solid = closed_core(*core);
+  EXPECT_TRUE(is_valid(solid)) << validity_report(solid);
+}
+
+// Beams as thick as their nodes (beam/node 1.0) give the hull model, but a taper or a screw computes their end
+// radius as 1 plus rounding. The arrangement took it for a ball of radius 1 / (1 + 2e-16) < 1, which the cones
+// leave at v = sqrt(negative): NaN everywhere, and "a stump is swallowed by its neighbours up to its collar"
+// (issue 17's long sweep: FCC and octet at node 0.25, beam/node 1.0, every kind of step).
+TEST(HubCore, TangentBeamsRoundedAboveTheBallRadiusAreTheHullModel) {
+  for (double rounding : {0.0, 2.2e-16, 1e-13}) {
+    std::vector<CoreStump> stumps;
+    for (const Vec3& d : octet_directions()) {
+      CoreStump s = hull_stump(d, 0.0);
+      s.end_radius = 1.0 + rounding;
+      stumps.push_back(s);
+    }
+    const auto core =
+        build_hub_core(stumps, CoreKind::Hull, core_collars(stumps, CoreKind::Hull, kMaxCollarPosition));
+    const TopoDS_Shape solid = closed_core(*core);
+    EXPECT_TRUE(is_valid(solid)) << "end radius 1 + " << rounding << ":\n" << validity_report(solid);
+  }
+}
+
 // A hull-model lattice (no beam radii): every hub is a core; the volume is the cores' quadratures plus the
 // frustums between the collars.
 TEST(HubCore, HullModelLatticeTrimsAndSkins) {

@@ -914,7 +914,7 @@ void build_sphere_faces(HullCoreBuild& h) {
 std::shared_ptr<const HubCore> build_envelope_core(const std::vector<CoreStump>& stumps, CoreKind kind,
                                                    const std::vector<double>& collars) {
   const int n = static_cast<int>(stumps.size());
-  const double rho = stumps[0].end_radius, ball = 1.0 / rho;
+  const double rho = shared_end_radius(stumps), ball = 1.0 / rho;
   HullCoreBuild h;
   h.cones = envelope_cones(stumps);
   for (int i = 0; i < n; ++i) h.v_collar.push_back((collars[i] * ball - h.cones[i].s) / h.cones[i].c);

@@ -22,6 +22,36 @@ void trig_roots(double a0, double a1, double a2, std::vector<double>& out) {
   out.push_back(phi - beta);
 }
 
+// A piece whose two ends merged into one vertex (a neighbour active over less than kVertexMerge, where a slight
+// perturbation splits a point at which four stumps meet) has no edge to carry: as an arc from a vertex back to
+// itself it would be read as the whole conic. Its partner cone drops the same piece (same vertices), so the faces
+// still agree; the vertex then joins the pieces on either side. Neighbours left with the same active merge.
+void drop_pieces_without_length(Envelope& env) {
+  std::vector<Piece>& p = env.pieces;
+  if (p.size() < 2) return;
+  std::vector<Piece> kept;
+  for (const Piece& q : p) {
+    if (q.v0 == q.v1) continue;
+    if (!kept.empty() && kept.back().active == q.active) {
+      kept.back().u1 = q.u1;
+      kept.back().v1 = q.v1;
+    } else {
+      kept.push_back(q);
+    }
+  }
+  if (kept.size() > 1 && kept.front().active == kept.back().active) {
+    kept.front().u0 = kept.back().u0 - kTwoPi;
+    kept.front().v0 = kept.back().v0;
+    kept.pop_back();
+  }
+  if (kept.empty()) fail_input("hub", "a stump's envelope has no piece longer than the vertex tolerance");
+  // The pieces stay contiguous in u: each starts where the one before it ends.
+  for (std::size_t k = 0; k + 1 < kept.size(); ++k) kept[k].u1 = kept[k + 1].u0;
+  kept.back().u1 = kept.front().u0 + kTwoPi;
+  p = kept;
+  env.window = p.front().u0;
+}
+
 // The envelope of cone i: its pieces between breakpoints, merged where the active neighbour stays the same.
 Envelope envelope_of(const std::vector<Cone>& cones, int i, double v_collar, VertexPool& pool) {
   const Cone& ki = cones[i];
@@ -69,6 +99,7 @@ Envelope envelope_of(const std::vector<Cone>& cones, int i, double v_collar, Ver
   }
   for (std::size_t k = 0; k < env.pieces.size(); ++k) env.pieces[k].v1 = env.pieces[(k + 1) % env.pieces.size()].v0;
   // Vertex positions at breakpoints are the envelope's value there, which both neighbouring actives share.
+  drop_pieces_without_length(env);
   return env;
 }
 

@@ -27,7 +27,7 @@ Cone make_cone(const CoreStump& st) { return hull::make_cone(st.direction, st.si
 // unit sphere, the ball's sphere at exit_v). Empty when another stump dominates some generator again farther out
 // (stumps meeting away from the hub: the conservative collars then decide) or a collar would come near the apex.
 std::vector<double> envelope_collars(const std::vector<CoreStump>& stumps) {
-  const double rho = stumps[0].end_radius;
+  const double rho = shared_end_radius(stumps);
   const std::vector<Cone> cones = envelope_cones(stumps);
   const double exit_v = cones[0].exit_v;
   std::vector<double> collars;
@@ -51,19 +51,26 @@ std::vector<double> envelope_collars(const std::vector<CoreStump>& stumps) {
 }  // namespace
 
 std::vector<hull::Cone> envelope_cones(const std::vector<CoreStump>& stumps) {
-  const double ball = 1.0 / stumps[0].end_radius;
+  const double ball = 1.0 / shared_end_radius(stumps);
   const double exit_v = std::sqrt((ball - 1.0) * (ball + 1.0));
   std::vector<Cone> cones;
   for (const CoreStump& st : stumps) cones.push_back(hull::make_cone(st.direction, st.sin_phi, exit_v));
   return cones;
 }
 
+namespace {
+// End radii this close above 1 are the hull model's 1 (core_kind calls a beam tangent within 1e-12 as well).
+constexpr double kTangentRounding = 1e-12;
+}  // namespace
+
 bool share_end_radius(const std::vector<CoreStump>& stumps) {
   if (stumps.empty()) return false;
   for (const CoreStump& s : stumps)
     if (!(std::abs(s.end_radius - stumps[0].end_radius) <= 1e-12 * stumps[0].end_radius)) return false;
-  return stumps[0].end_radius > 0.0 && stumps[0].end_radius <= 1.0;
+  return stumps[0].end_radius > 0.0 && stumps[0].end_radius <= 1.0 + kTangentRounding;
 }
+
+double shared_end_radius(const std::vector<CoreStump>& stumps) { return std::min(stumps.at(0).end_radius, 1.0); }
 
 std::vector<double> core_collars(const std::vector<CoreStump>& stumps, CoreKind kind, double max_position) {
   // The hull model is the case rho = 1.

@@ -33,6 +33,11 @@ std::vector<double> place_collars(const std::vector<CoreStump>& stumps, CoreKind
 // the ball's center, and the B-rep builds the core from their envelope arrangement without a Boolean.
 bool share_end_radius(const std::vector<CoreStump>& stumps);
 
+// That shared end radius rho, for the arrangement. A beam tangent to its ball (the hull model) computes its end
+// radius as 1 plus rounding (1 + 2e-16 after a taper or a screw); it is 1, not a ball of radius 1 / rho < 1 that
+// the cones would leave at an imaginary exit_v.
+double shared_end_radius(const std::vector<CoreStump>& stumps);
+
 // The stumps' cones for the envelope arrangement when they share their end radius rho: scaled by 1 / rho, so
 // that they are tangent to the unit sphere and the ball's sphere (radius 1 / rho) meets them at
 // exit_v = sqrt(1 / rho^2 - 1) (0 in the hull model).
