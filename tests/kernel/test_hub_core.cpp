@@ -299,6 +299,41 @@ TEST(HubCore, TangentBeamsRoundedAboveTheBallRadiusAreTheHullModel) {
   }
 }
 
+// Issue 17's long sweep, octet at node 0.45 of the neighbour distance, beam/node 0.5, twisted taper: the exit caps
+// are exactly tangent (60 degrees apart, beam/node sin 30 degrees) and the tapered stumps widen, so the arrangement
+// refuses the hub and the Fuse builds it. OpenCASCADE's Fuse split the collar disk of stump 3 at 1.02 (with both
+// sets of collars tried then) and left it whole 6 % farther out. The stumps are that hub's to the last digit.
+TEST(HubCore, FuseThatSplitsACollarIsRetriedWithCollarsFartherOut) {
+  struct Stump {
+    Vec3 direction;
+    double sin_phi, exit;
+  };
+  const std::vector<Stump> hub = {
+      {{1.1102230246251568e-16, 0, 1}, -0.0, 0.86602540378443837},
+      {{0.86602540378443882, 0, 0.5}, -0.0, 0.86602540378443837},
+      {{-0.57735026918962584, -0.81649658092772615, 0}, 0, 0.8660254037844386},
+      {{0.56687266131181591, 0.82288640816193248, 0.03890173671718445}, -0.010802995713489893, 0.86057336982863464},
+      {{0.013513078795983239, 0.042105248392565249, -0.99902179393607526}, -0.011713526605891776, 0.86010922619712626},
+      {{0.28867513459481287, -0.81649658092772615, -0.5}, 0, 0.8660254037844386},
+      {{0.28867513459481298, -0.81649658092772615, 0.5}, 0, 0.86602540378443837},
+      {{0.8660254037844386, 7.2164496600635195e-16, -0.50000000000000044}, -0.01125, 0.86034559888023887}};
+  std::vector<CoreStump> stumps;
+  for (const Stump& h : hub) {
+    CoreStump s;
+    s.direction = h.direction;
+    s.sin_phi = h.sin_phi;
+    s.end_radius = 0.5;
+    s.exit = h.exit;
+    stumps.push_back(s);
+  }
+  const std::vector<double> asked = core_collars(stumps, CoreKind::Transversal, kMaxCollarPosition);
+  const auto core = build_hub_core(stumps, CoreKind::Transversal, asked);
+  EXPECT_TRUE(core->fused);
+  EXPECT_GT(core->collar_position[3], asked[3]);  // the collars it used lie farther out
+  const TopoDS_Shape solid = closed_core(*core);
+  EXPECT_TRUE(is_valid(solid)) << validity_report(solid);
+}
+
 // A hull-model lattice (no beam radii): every hub is a core; the volume is the cores' quadratures plus the
 // frustums between the collars.
 TEST(HubCore, HullModelLatticeTrimsAndSkins) {

@@ -45,7 +45,8 @@ struct HubCore {
 // Builds the core with the given collars (core_collars) and checks that it encloses, with its collar disks, the
 // exact volume of its hub cut at those collars (hub_properties, 1e-6 relative): no core is handed out unmeasured.
 // Transversal stumps of one end radius go through the arrangement first; a core it refuses or OpenCASCADE finds invalid (tangent exit caps) is fused instead, with
-// place_collars' collars: the core's collar_position says which were used. Throws InvalidInput ("hub") for
+// place_collars' collars (or those 6 or 12 % farther out, where the Fuse split a collar): the core's collar_position
+// says which were used. Throws InvalidInput ("hub") for
 // configurations outside the supported class (a stump swallowed by its neighbours, a conic through a cone's apex,
 // a collar touched by the Fuse).
 std::shared_ptr<const HubCore> build_hub_core(const std::vector<CoreStump>& stumps, CoreKind kind,
