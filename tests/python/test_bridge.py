@@ -1,0 +1,121 @@
+"""The trim policy 'bridge' on conformal BeCOTS stacks: a cylinder filled with stacked polar discs (rings that follow
+its wall) and a cone filled with stacked sheets rolled onto it. Each part: one valid solid; every kept hub whole
+inside; one bridge per kept hub that lost a neighbour, toward its nearest wall point (checked against the body's
+closed form); the volume against Monte Carlo membership in the bridged lattice (brute force) inside the body."""
+import math
+import os
+
+import numpy as np
+import pytest
+
+import steadylattice as sl
+from brute_force import inside_lattice
+
+DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data")
+
+
+def body(name):
+    with open(os.path.join(DATA, name)) as f:
+        return f.read()
+
+
+def stacked(apex, a, nu, nv, layers, dilation, radius, layer_raise):
+    """Triangle-connectivity BeCOTS stack about the z axis through `apex`: nu groups around (a ring open by two
+    spacings: a whole turn would make corners coincide), nv rings dilated by `dilation` in all, the layers joined."""
+    m = sl.BecotsMap.from_field(apex, (0, 0, 1), a, complex(0, 2 * math.pi * nu / (nu + 1)),
+                                complex(math.log(dilation), 0))
+    nodes, beams = sl.becots_connectivity("triangle")
+    beams = list(beams) + [(n, 0, 0, 1, n) for n in range(len(nodes))]
+    return sl.becots_lattice(m, (nodes, beams), (nu, nv, layers), radius, layer_raise=layer_raise, beam_ratio=0.5)
+
+
+class Cylinder:
+    """The body of bridge_cylinder.brep: radius 20 about the z axis, z from -1 to 21."""
+    brep, lo, hi = "bridge_cylinder.brep", (-20, -20, -1), (20, 20, 21)
+
+    @staticmethod
+    def distance(p):
+        return np.minimum(20.0 - np.hypot(p[..., 0], p[..., 1]), np.minimum(p[..., 2] + 1.0, 21.0 - p[..., 2]))
+
+    @staticmethod
+    def lattice():
+        # discs in the plane z = 1 and raised along the axis; the sixth ring reaches the wall and is dropped
+        return stacked((0, 0, 1.0), (7.0, 0, 1.0), 16, 6, 3, 24.0 / 7.0, 0.35, 2.5)
+
+
+class Cone:
+    """The body of bridge_cone.brep: radius 22 at z = 0 to 8 at z = 28 about the z axis (apex at z = 44)."""
+    brep, lo, hi = "bridge_cone.brep", (-22, -22, 0), (22, 22, 28)
+    cos_a = 1.0 / math.hypot(1.0, 0.5)
+
+    @classmethod
+    def distance(cls, p):
+        lateral = (22.0 - 0.5 * p[..., 2] - np.hypot(p[..., 0], p[..., 1])) * cls.cos_a
+        return np.minimum(lateral, np.minimum(p[..., 2], 28.0 - p[..., 2]))
+
+    @staticmethod
+    def lattice():
+        # sheets on the cone's own half-angle, 0.6 down its axis (0.27 inside the wall: the outer layer crosses
+        # it and is dropped), rings growing down past the base, layers 3 further down each
+        apex = 44.0 - 0.6
+        return stacked((0, 0, apex), ((apex - 24.0) * 0.5, 0, 24.0), 20, 5, 3, 2.6, 0.35, -3.0)
+
+
+@pytest.mark.parametrize("shape", [Cylinder, Cone], ids=["cylinder", "cone"])
+def test_conformal_fill_with_bridges(shape):
+    lat, text = shape.lattice(), body(shape.brep)
+    stats = {}
+    props = sl.brep_properties(lat.brep(text, "bridge", stats=stats))
+    assert props["valid"], props["report"]
+    assert props["solids"] == 1
+    plan = lat.bridge_plan(text)
+    centers, radii = lat.balls()
+    kept = plan["kept"]
+    # kept hubs: whole inside; every hub whose ball reaches the wall: dropped
+    assert np.all(shape.distance(centers[kept]) > radii[kept])
+    assert not (set(np.nonzero(shape.distance(centers) < radii)[0].tolist()) & set(kept.tolist()))
+    # hubs that lost a neighbour, counted here: one bridge each, none blocked
+    is_kept = np.zeros(lat.ball_count, dtype=bool)
+    is_kept[kept] = True
+    a, b, _, _ = lat.beams()
+    lost = set(a[is_kept[a] & ~is_kept[b]].tolist()) | set(b[is_kept[b] & ~is_kept[a]].tolist())
+    assert len(lost) > 0
+    assert plan["lost_neighbour_hubs"] == len(lost) == stats["lost_neighbour_hubs"]
+    assert sorted(br["hub"] for br in plan["bridges"]) == sorted(lost)
+    assert plan["blocked"] == [] and stats["blocked_bridges"] == 0
+    assert stats["bridges"] == len(lost) and stats["kept_hubs"] == len(kept)
+    for br in plan["bridges"]:
+        c = centers[br["hub"]]
+        assert abs(shape.distance(br["wall"])) < 1e-6  # on the wall
+        assert abs(np.linalg.norm(br["wall"] - c) - shape.distance(c)) < 1e-6  # the nearest point
+    # the part is the bridged lattice inside the body
+    bridged = Bridged(plan)
+    rng = np.random.default_rng(15)
+    samples = 200000
+    points = rng.uniform(shape.lo, shape.hi, size=(samples, 3))
+    points = points[shape.distance(points) >= 0.0]
+    box = float(np.prod(np.subtract(shape.hi, shape.lo)))
+    p = inside_lattice(points, bridged).sum() / samples
+    estimate, sigma = box * p, box * math.sqrt(p * (1 - p) / samples)
+    assert abs(props["volume"] - estimate) < 4 * sigma, (props["volume"], estimate, sigma)
+
+
+class Bridged:
+    """The bridged lattice of bridge_plan() with the balls() / beams() a Lattice has, for the brute force."""
+
+    def __init__(self, plan):
+        self._balls, self._beams = plan["balls"], plan["beams"]
+
+    def balls(self):
+        return self._balls
+
+    def beams(self):
+        return self._beams
+
+
+def test_bridge_policy_errors_name_the_policy():
+    lat = Cylinder.lattice()
+    with pytest.raises(ValueError, match="policy.*'bridge'"):
+        lat.brep(body(Cylinder.brep), "bridges")
+    with pytest.raises(ValueError, match="body"):
+        lat.bridge_plan("not BREP")
