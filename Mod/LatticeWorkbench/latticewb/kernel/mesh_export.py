@@ -33,7 +33,8 @@ def part_meshes(obj, tolerance):
     if body is None:
         raise ValueError("Body: a LatticePart without a body has no trimmed mesh; export its SteadyLattice")
     if policy != "clip":
-        raise ValueError("Policy: a trimmed mesh clips the lattice at the body (policy 'clip'); got %r" % policy)
+        raise ValueError("Policy: a trimmed mesh clips the lattice at the body (policy 'clip'); got %r, which only "
+                         "the B-rep part has (export it as STEP, or set Policy to clip)" % policy)
     inner = None
     if skin > 0.0:
         offset = obj.Body.Shape.makeOffsetShape(-skin, 1e-6 * max(1.0, obj.Body.Shape.BoundBox.DiagonalLength))
