@@ -1,7 +1,8 @@
 """The trim policy 'bridge' on conformal BeCOTS stacks: a cylinder filled with stacked polar discs (rings that follow
-its wall) and a cone filled with stacked sheets rolled onto it. Each part: one valid solid; every kept hub whole
-inside; one bridge per kept hub that lost a neighbour, toward its nearest wall point (checked against the body's
-closed form); the volume against Monte Carlo membership in the bridged lattice (brute force) inside the body."""
+its wall), without and with a skin, and a cone filled with stacked sheets rolled onto it. Each part: one valid solid;
+every kept hub whole inside the wall (the inner wall with a skin); one bridge per kept hub that lost a neighbour,
+toward its nearest wall point (checked against the body's closed form); the volume against Monte Carlo membership
+in the bridged lattice (brute force) inside the wall, plus the skin in closed form."""
 import math
 import os
 
@@ -38,6 +39,10 @@ class Cylinder:
         return np.minimum(20.0 - np.hypot(p[..., 0], p[..., 1]), np.minimum(p[..., 2] + 1.0, 21.0 - p[..., 2]))
 
     @staticmethod
+    def skin_volume(t):
+        return math.pi * (20.0 ** 2 * 22.0 - (20.0 - t) ** 2 * (22.0 - 2 * t))
+
+    @staticmethod
     def lattice():
         # discs in the plane z = 1 and raised along the axis; the sixth ring reaches the wall and is dropped
         return stacked((0, 0, 1.0), (7.0, 0, 1.0), 16, 6, 3, 24.0 / 7.0, 0.35, 2.5)
@@ -61,19 +66,25 @@ class Cone:
         return stacked((0, 0, apex), ((apex - 24.0) * 0.5, 0, 24.0), 20, 5, 3, 2.6, 0.35, -3.0)
 
 
-@pytest.mark.parametrize("shape", [Cylinder, Cone], ids=["cylinder", "cone"])
-def test_conformal_fill_with_bridges(shape):
+@pytest.mark.parametrize("shape, skin", [(Cylinder, 0.0), (Cone, 0.0), (Cylinder, 0.8)],
+                         ids=["cylinder", "cone", "cylinder with skin"])
+def test_conformal_fill_with_bridges(shape, skin):
     lat, text = shape.lattice(), body(shape.brep)
     stats = {}
-    props = sl.brep_properties(lat.brep(text, "bridge", stats=stats))
+    props = sl.brep_properties(lat.brep(text, "bridge", skin=skin, stats=stats))
     assert props["valid"], props["report"]
     assert props["solids"] == 1
-    plan = lat.bridge_plan(text)
+    assert not stats["union_through_pores"]
+    plan = lat.bridge_plan(text, skin)
     centers, radii = lat.balls()
     kept = plan["kept"]
-    # kept hubs: whole inside; every hub whose ball reaches the wall: dropped
-    assert np.all(shape.distance(centers[kept]) > radii[kept])
-    assert not (set(np.nonzero(shape.distance(centers) < radii)[0].tolist()) & set(kept.tolist()))
+
+    def wall_distance(p):
+        return shape.distance(p) - skin
+
+    # kept hubs: whole inside the wall; every hub whose ball reaches it: dropped
+    assert np.all(wall_distance(centers[kept]) > radii[kept])
+    assert not (set(np.nonzero(wall_distance(centers) < radii)[0].tolist()) & set(kept.tolist()))
     # hubs that lost a neighbour, counted here: one bridge each, none blocked
     is_kept = np.zeros(lat.ball_count, dtype=bool)
     is_kept[kept] = True
@@ -86,17 +97,18 @@ def test_conformal_fill_with_bridges(shape):
     assert stats["bridges"] == len(lost) and stats["kept_hubs"] == len(kept)
     for br in plan["bridges"]:
         c = centers[br["hub"]]
-        assert abs(shape.distance(br["wall"])) < 1e-6  # on the wall
-        assert abs(np.linalg.norm(br["wall"] - c) - shape.distance(c)) < 1e-6  # the nearest point
-    # the part is the bridged lattice inside the body
+        assert abs(wall_distance(br["wall"])) < 1e-6  # on the wall
+        assert abs(np.linalg.norm(br["wall"] - c) - wall_distance(c)) < 1e-6  # the nearest point
+    # the part is the bridged lattice inside the wall, and the skin
     bridged = Bridged(plan)
     rng = np.random.default_rng(15)
     samples = 200000
     points = rng.uniform(shape.lo, shape.hi, size=(samples, 3))
-    points = points[shape.distance(points) >= 0.0]
+    points = points[wall_distance(points) >= 0.0]
     box = float(np.prod(np.subtract(shape.hi, shape.lo)))
     p = inside_lattice(points, bridged).sum() / samples
-    estimate, sigma = box * p, box * math.sqrt(p * (1 - p) / samples)
+    estimate = box * p + (shape.skin_volume(skin) if skin else 0.0)
+    sigma = box * math.sqrt(p * (1 - p) / samples)
     assert abs(props["volume"] - estimate) < 4 * sigma, (props["volume"], estimate, sigma)
 
 
