@@ -1,7 +1,7 @@
 """CurvedLattice inside FreeCAD (issue 15): a BeCOTS lattice from four corners typed or linked to vertices, rebuilt
 when a corner is edited or a linked vertex moves, bad corners and nonsense properties refused naming the property,
 and a LatticePart trimming it into a cylinder with the 'bridge' policy (one valid solid, every hub that lost a
-neighbour bridged, the part's volume the kernel's)."""
+neighbour bridged, the part's volume the kernel's, its STL bridged too)."""
 import math
 import os
 import tempfile
@@ -143,9 +143,14 @@ class CurvedLatticeTest(unittest.TestCase):
         whole = sl.brep_properties(curved_lattice.lattice(lattice).brep(body.Shape.exportBrepToString(), "whole",
                                                                          dangling="remove"))
         self.assertLess(whole["volume"], part.Volume)
-        # a trimmed mesh only clips: 'bridge' is refused naming the policy, not silently clipped
+        # the part's mesh bridges too (the kernel's trimmed mesh of the bridged lattice); a 3MF beam lattice,
+        # which the printer clips, is refused naming the policy rather than clipped silently
+        folder = tempfile.mkdtemp()
+        mesh_stats = mesh_export.write_mesh_file(part, os.path.join(folder, "part.stl"), ".stl", tolerance=0.02)
+        self.assertEqual(mesh_stats["bridges"], stats["bridges"])
+        self.assertGreater(os.path.getsize(os.path.join(folder, "part.stl")), 84)
         with self.assertRaises(ValueError) as raised:
-            mesh_export.write_mesh_file(part, os.path.join(tempfile.mkdtemp(), "part.stl"), ".stl")
+            mesh_export.write_mesh_file(part, os.path.join(folder, "part.3mf"), ".3mf")
         self.assertTrue(str(raised.exception).startswith("Policy: "), str(raised.exception))
         self.assertIn("'bridge'", str(raised.exception))
         # the corner edit re-trims the part
