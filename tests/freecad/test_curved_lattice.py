@@ -92,6 +92,25 @@ class CurvedLatticeTest(unittest.TestCase):
         self.doc.recompute()
         self.assertTrue(obj.isValid(), obj.getStatusString())
         self.assertTrue(close(self.corners_of_map(obj)[0], box.Shape.Vertexes[0].Point))
+        # a sketch's point (a sketch's Shape does not hold lone points: taken from its geometry and placement)
+        import Part
+        sketch = self.doc.addObject("Sketcher::SketchObject", "Sketch")
+        sketch.addGeometry(Part.LineSegment(FreeCAD.Vector(-3, -3, 0), FreeCAD.Vector(-2, -3, 0)))
+        sketch.addGeometry(Part.Point(FreeCAD.Vector(CORNERS[0].x, CORNERS[0].y, 0)))
+        sketch.Placement.Base = FreeCAD.Vector(0, 0, 1)
+        self.doc.recompute()
+        obj.ALink = (sketch, ["Vertex3"])  # the line's two ends come first
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertTrue(close(self.corners_of_map(obj)[0], CORNERS[0]))
+        sketch.Placement.Base = FreeCAD.Vector(0, 0, 2)
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertTrue(close(self.corners_of_map(obj)[0], CORNERS[0] + FreeCAD.Vector(0, 0, 1)))
+        obj.ALink = (sketch, ["Vertex9"])
+        self.doc.recompute()
+        self.assertIn("Invalid", obj.State)
+        self.assertIn("ALink: Sketch has no Vertex9", obj.getStatusString())
 
     def test_bad_corners_fail_naming_them(self):
         obj = self.make()

@@ -10,13 +10,16 @@ def linked_point(obj, corner):
     """The global position of the vertex linked as `corner` ('A'..'D'), or None when no vertex is linked.
 
     The link is (object, [sub-element]): a sketch's vertex ('Vertex3'), a Part vertex, a Draft point (its only
-    vertex; no sub-element needed). The object's Shape carries its placement, so the point is where it is drawn.
+    vertex; no sub-element needed). The point is placed by the object's own placement (a container's, such as a
+    PartDesign Body's, is not applied).
     Raises ValueError naming the link property when the link does not give one vertex."""
     link = getattr(obj, corner + "Link")
     if link is None:
         return None
     target, subs = link
     prop = corner + "Link"
+    if getattr(target, "TypeId", "") == "Sketcher::SketchObject":
+        return _sketch_point(target, [s for s in subs if s], prop)
     shape = getattr(target, "Shape", None)
     if shape is None or shape.isNull():
         raise ValueError("%s: %s has no shape to take a vertex from" % (prop, target.Label))
@@ -33,6 +36,22 @@ def linked_point(obj, corner):
     except Exception:
         raise ValueError("%s: %s has no %s" % (prop, target.Label, subs[0])) from None
     return vertex.Point
+
+
+def _sketch_point(sketch, subs, prop):
+    """A sketch's vertex ('VertexN', as the 3D view names it): a sketch's Shape holds its edges but not its lone
+    points, so the point comes from the sketch's geometry, placed by the sketch's Placement."""
+    if len(subs) != 1 or not subs[0].startswith("Vertex") or not subs[0][6:].isdigit():
+        raise ValueError("%s: link one vertex of %s (as %s.VertexN; got %s)"
+                         % (prop, sketch.Label, sketch.Name, ", ".join(subs) or "none"))
+    try:
+        geo, pos = sketch.getGeoVertexIndex(int(subs[0][6:]) - 1)
+        if geo < -2:  # no such vertex: FreeCAD answers (-2000, 0)
+            raise ValueError
+        local = sketch.getPoint(geo, pos)
+    except (ValueError, IndexError):
+        raise ValueError("%s: %s has no %s" % (prop, sketch.Label, subs[0])) from None
+    return sketch.Placement.multVec(local)
 
 
 def corner_points(obj):
