@@ -9,6 +9,7 @@
 #include <BRepPrimAPI_MakeCylinder.hxx>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <functional>
 #include <random>
@@ -20,6 +21,7 @@
 #include "steady/brep/trim.hpp"
 #include "steady/core/constants.hpp"
 #include "steady/core/errors.hpp"
+#include "steady/core/progress.hpp"
 #include "steady/cots/becots_lattice.hpp"
 #include "steady/cots/becots_map.hpp"
 #include "steady/lattice/flat_lattice.hpp"
@@ -219,6 +221,43 @@ TEST(TrimBridge, AHubOnTheMedialAxisTakesOneNearestPoint) {
   const double v = shape_volume(r.part);
   EXPECT_GT(v, ball + rod * (1.0 - 0.3) - 1e-3);
   EXPECT_LT(v, ball + rod * 1.0);
+}
+
+// The bridge trim reports growing fractions up to 1, through the plan (classification, nearest points) and the
+// clip of the bridged lattice; cancelled early (in the plan) or late (in the clip), it throws Cancelled, and a full
+// run afterwards gives the same part.
+TEST(TrimBridge, ReportsProgressAndCancels) {
+  const FlatLattice f = grid(5);
+  const TopoDS_Shape body = cylinder().shape;
+  TrimOptions o;
+  o.policy = TrimPolicy::Bridge;
+  std::vector<double> seen;
+  Progress full([&](double x) {
+    seen.push_back(x);
+    return true;
+  });
+  full.set_report_interval(std::chrono::milliseconds(0));
+  const TrimResult reference = trim_lattice(f, body, o, full);
+  ASSERT_GE(seen.size(), 10u);
+  EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+  EXPECT_DOUBLE_EQ(seen.back(), 1.0);
+  EXPECT_TRUE(std::any_of(seen.begin(), seen.end(), [](double x) { return x > 0.0 && x < 0.1; }))
+      << "nothing reported during the plan";
+  for (double stop : {0.02, 0.5}) {
+    std::vector<double> stopped;
+    Progress p([&](double x) {
+      stopped.push_back(x);
+      return x < stop;
+    });
+    p.set_report_interval(std::chrono::milliseconds(0));
+    EXPECT_THROW(trim_lattice(f, body, o, p), Cancelled) << stop;
+    ASSERT_FALSE(stopped.empty());
+    EXPECT_GE(stopped.back(), stop);
+    EXPECT_LT(stopped.back(), 1.0);
+  }
+  const TrimResult again = trim_lattice(f, body, o);
+  EXPECT_NEAR(shape_volume(again.part) / shape_volume(reference.part), 1.0, 1e-12);
+  EXPECT_EQ(again.stats.bridges, reference.stats.bridges);
 }
 
 TEST(TrimBridge, BadInputNamesThePolicy) {

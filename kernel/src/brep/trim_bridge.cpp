@@ -67,9 +67,11 @@ bool meets_foreign_element(const FlatLattice& f, const std::vector<char>& kept, 
 
 }  // namespace
 
-BridgePlan plan_bridges(const FlatLattice& f, const TopoDS_Shape& body_shape, double skin) {
-  Progress quiet;
-  TrimBudget budget(quiet);
+BridgePlan plan_bridges(const FlatLattice& f, const TopoDS_Shape& body_shape, double skin, Progress& progress) {
+  // The classification's share of the units (TrimBudget's fixed shares), then the nearest points.
+  progress.set_total(100);
+  Progress classification(progress, 80);
+  TrimBudget budget(classification);
   TrimOptions options;
   options.skin = skin;
   const Bodies bodies = make_bodies(body_shape, options, budget);
@@ -79,6 +81,7 @@ BridgePlan plan_bridges(const FlatLattice& f, const TopoDS_Shape& body_shape, do
   TrimStats stats;
   const HubStates states = classify(f, frustums, absorbed, bodies, stats, budget);
   const SolidBody& wall = bodies.inner ? *bodies.inner : bodies.body;
+  classification.finish();
 
   BridgePlan plan;
   const std::int64_t n = f.ball_count();
@@ -110,7 +113,9 @@ BridgePlan plan_bridges(const FlatLattice& f, const TopoDS_Shape& body_shape, do
   // Nearest points (BRepExtrema: serial).
   const double gap = kClearanceRelative * wall.size();
   std::vector<Bridge> candidates;
+  Progress nearest(progress, 20, std::max<std::int64_t>(1, n));
   for (std::int64_t i = 0; i < n; ++i) {
+    nearest.advance();
     if (bridge_radius[i] <= 0.0) continue;
     ++plan.lost_neighbour_hubs;
     const Vec3 c = f.balls[i].center;
@@ -170,6 +175,7 @@ BridgePlan plan_bridges(const FlatLattice& f, const TopoDS_Shape& body_shape, do
     balls.push_back({b.end, b.radius});
   }
   plan.lattice = make_flat_lattice(std::move(balls), std::move(beams));
+  progress.finish();
   return plan;
 }
 
@@ -178,9 +184,11 @@ namespace trim {
 TrimResult trim_with_bridges(const FlatLattice& f, const TopoDS_Shape& body, const TrimOptions& options,
                              Progress& progress) {
   progress.set_total(100);
-  progress.check();
-  const BridgePlan plan = plan_bridges(f, body, options.skin);
-  progress.advance(10);
+  BridgePlan plan;
+  {
+    Progress part(progress, 10);
+    plan = plan_bridges(f, body, options.skin, part);
+  }
   for (std::int64_t hub : plan.blocked)
     report(options, "trim: no bridge from hub " + std::to_string(hub) + ": it would meet another kept element");
   TrimOptions clip = options;

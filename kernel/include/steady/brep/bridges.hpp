@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "steady/core/progress.hpp"
 #include "steady/core/vec.hpp"
 #include "steady/lattice/flat_lattice.hpp"
 
@@ -46,7 +47,9 @@ struct BridgePlan {
 };
 
 // The bridged lattice of `lattice` in `body` with a skin of thickness `skin` (0: none). InvalidInput naming
-// "body" (not one valid closed solid; the lattice misses it), "skin", or "policy" (no hub lies whole inside).
-BridgePlan plan_bridges(const FlatLattice& lattice, const TopoDS_Shape& body, double skin);
+// "body" (not one valid closed solid; the lattice misses it), "skin", or "policy" (no hub lies whole inside);
+// Cancelled soon after `progress` is (it reports through the classification and the nearest points).
+BridgePlan plan_bridges(const FlatLattice& lattice, const TopoDS_Shape& body, double skin,
+                        Progress& progress = no_progress());
 
 }  // namespace steady
