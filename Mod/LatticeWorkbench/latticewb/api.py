@@ -9,7 +9,8 @@
 
 This module only gathers the workbench's public functions; they live in their layers (make, kernel).
 """
-__all__ = ["make_lattice", "make_curved_lattice", "make_part", "make_filter", "make_mesh", "properties", "target_density", "lattice", "ball_index_of",
+__all__ = ["make_lattice", "make_curved_lattice", "make_part", "make_filter", "make_mesh", "properties",
+           "target_density", "lattice", "ball_index_of",
            "export", "export_shape", "get_type"]
 
 from latticewb.kernel import mass as _mass

@@ -147,7 +147,8 @@ std::vector<Vec3> SolidBody::nearest_points(const Vec3& p) const {
   std::vector<Vec3> out;
   for (TopExp_Explorer x(solid_, TopAbs_SHELL); x.More(); x.Next()) {
     BRepExtrema_DistShapeShape d(v, x.Current());
-    if (!d.IsDone() || d.NbSolution() < 1) throw std::runtime_error("BRepExtrema failed to find the body's nearest point");
+    if (!d.IsDone() || d.NbSolution() < 1)
+      throw std::runtime_error("BRepExtrema failed to find the body's nearest point");
     if (d.Value() > best) continue;
     if (d.Value() < best) out.clear();
     best = d.Value();

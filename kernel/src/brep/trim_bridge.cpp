@@ -124,7 +124,8 @@ BridgePlan plan_bridges(const FlatLattice& f, const TopoDS_Shape& body_shape, do
     b.hub = i;
     b.wall = nearest.front();
     b.radius = bridge_radius[i];
-    for (const Vec3& q : nearest) b.ambiguous = b.ambiguous || glm::length(q - b.wall) > kAmbiguousRelative * wall.size();
+    for (const Vec3& q : nearest)
+      b.ambiguous = b.ambiguous || glm::length(q - b.wall) > kAmbiguousRelative * wall.size();
     const double d = glm::length(b.wall - c);  // > the ball's radius: the hub is whole inside
     if (!b.ambiguous) {
       const Vec3 probe = c - (b.wall - c) * kProbeStep;
@@ -207,7 +208,8 @@ TrimResult trim_with_bridges(const FlatLattice& f, const TopoDS_Shape& body, con
   s.lost_neighbour_hubs = plan.lost_neighbour_hubs;
   s.bridges = static_cast<std::int64_t>(plan.bridges.size());
   s.blocked_bridges = static_cast<std::int64_t>(plan.blocked.size());
-  s.ambiguous_bridges = std::count_if(plan.bridges.begin(), plan.bridges.end(), [](const Bridge& b) { return b.ambiguous; });
+  s.ambiguous_bridges =
+      std::count_if(plan.bridges.begin(), plan.bridges.end(), [](const Bridge& b) { return b.ambiguous; });
   progress.finish();
   return out;
 }

@@ -310,6 +310,7 @@ COMMANDS = {
 for _name, _command in COMMANDS.items():
     FreeCADGui.addCommand(_name, _command)
 
-TOOLBAR = ["Lattice_NewLattice", "Lattice_NewCurvedLattice", "Lattice_Filter", "Lattice_Part", "Lattice_Mesh", "Separator", "Lattice_Properties",
+TOOLBAR = ["Lattice_NewLattice", "Lattice_NewCurvedLattice", "Lattice_Filter", "Lattice_Part", "Lattice_Mesh",
+           "Separator", "Lattice_Properties",
            "Lattice_DensityTarget", "Separator", "Lattice_Export"]
 MENU = TOOLBAR

@@ -53,9 +53,9 @@ def _tessellated(shape, tolerance):
 
 
 def write_mesh_file(obj, path, extension, tolerance=None, report=None):
-    """Writes `obj` (a SteadyLattice or CurvedLattice, or a LatticePart) to `path`. tolerance: the chord tolerance of the
-    mesh in document units (None: default_tolerance). report(fraction) -> False cancels (steadylattice.Cancelled,
-    no file written). Returns the kernel's stats."""
+    """Writes `obj` (a SteadyLattice or CurvedLattice, or a LatticePart) to `path`. tolerance: the chord tolerance
+    of the mesh in document units (None: default_tolerance). report(fraction) -> False cancels
+    (steadylattice.Cancelled, no file written). Returns the kernel's stats."""
     stats = {}
     if types.is_part(obj) and extension in (".stl", ".obj"):
         lattice = lattice_part.kernel_request(obj)[0]

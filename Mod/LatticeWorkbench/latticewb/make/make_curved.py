@@ -13,8 +13,9 @@ def make_curved_lattice(doc, corners=None, links=None, connectivity="triangle", 
     corners: four points A = M(0,0), B = M(0,1), C = M(1,1), D = M(1,0) (FreeCAD vectors or triples), or None for
     the defaults; links: four (object, "VertexN") pairs (or (object, "") for a Draft point) giving the corners
     instead; connectivity: "triangle", "kagome" or "honeycomb"; cells: groups (along U, along V); layers and
-    layer_raise (mm along the field's axis); join_layers (beams between the layers); node_radius (mm, at corner A); beam_ratio: beam over node radius
-    (0: hulls of the balls). Bad values raise ValueError naming the parameter."""
+    layer_raise (mm along the field's axis); join_layers (beams between the layers); node_radius (mm, at corner
+    A); beam_ratio: beam over node radius (0: hulls of the balls). Bad values raise ValueError naming the
+    parameter."""
     if connectivity not in CONNECTIVITIES:
         raise ValueError("connectivity: expected one of %s (got %r)" % (", ".join(CONNECTIVITIES), connectivity))
     if corners is not None and len(corners) != 4:

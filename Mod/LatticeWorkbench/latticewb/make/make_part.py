@@ -10,8 +10,8 @@ def make_part(doc, lattice, body=None, policy="clip", skin=0.0, dangling="keep")
     """Adds a LatticePart: `lattice` (a SteadyLattice or a CurvedLattice) trimmed into `body` (an object with a solid
     Shape, or None for the whole lattice) as one exact B-rep solid. policy: "clip" (cut at the boundary), "whole"
     (only hubs entirely inside) or "bridge" (those hubs, each that lost a neighbour joined to the wall by a bridge
-    beam toward its nearest point); skin: wall thickness of the body's skin united with the lattice (0: none); dangling: "keep"
-    or "remove" beams joining a kept hub to a dropped one. Recompute the document to build it."""
+    beam toward its nearest point); skin: wall thickness of the body's skin united with the lattice (0: none);
+    dangling: "keep" or "remove" beams joining a kept hub to a dropped one. Recompute the document to build it."""
     if policy not in POLICIES:
         raise ValueError("policy: expected one of %s (got %r)" % (", ".join(POLICIES), policy))
     if dangling not in DANGLING:

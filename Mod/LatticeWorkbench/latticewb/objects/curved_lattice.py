@@ -4,8 +4,9 @@ The corners A = M(0,0), B = M(0,1), C = M(1,1), D = M(1,0) are typed in the prop
 vertices (ALink .. DLink: a sketch's point, a Draft point, a vertex of a Part shape), which then win over the typed
 values. Four coplanar corners give a planar (COTS) sheet; others roll the sheet onto the cone the field follows.
 The lattice has CellsU x CellsV groups of the chosen connectivity per layer, Layers layers raised by LayerRaise
-along the field's axis (JoinLayers: each node joined to its copy in the next layer). It is an ordinary lattice to the kernel, so a LatticePart trims it like a SteadyLattice,
-with any policy (bridge: whole hubs joined to the wall by bridges)."""
+along the field's axis (JoinLayers: each node joined to its copy in the next layer). It is an ordinary lattice to
+the kernel, so a LatticePart trims it like a SteadyLattice, with any policy (bridge: whole hubs joined to the wall
+by bridges)."""
 import FreeCAD
 
 from latticewb.kernel import curved_lattice, lattice_shape

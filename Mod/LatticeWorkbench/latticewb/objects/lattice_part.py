@@ -1,11 +1,11 @@
 """LatticePart: a steady lattice trimmed into a body, optionally with a skin, as one exact B-rep solid.
 
-Links to a SteadyLattice (or a CurvedLattice) and to a body (any object whose Shape holds a closed solid: a Part primitive, a PartDesign
-Body, an imported STEP part). The kernel classifies every hub against the body, keeps inside hubs whole, drops
-outside ones and cuts only the crossing hubs (policy clip), keeps only hubs whole inside (whole), or those joined to
-the wall by bridges, beams from each kept hub that lost a neighbour to the nearest point of the wall (bridge); with a
-skin, the body's wall of that thickness is united with the
-lattice trimmed to the inner offset. Editing the lattice or the body re-trims the part.
+Links to a SteadyLattice (or a CurvedLattice) and to a body (any object whose Shape holds a closed solid: a Part
+primitive, a PartDesign Body, an imported STEP part). The kernel classifies every hub against the body, keeps inside
+hubs whole, drops outside ones and cuts only the crossing hubs (policy clip), keeps only hubs whole inside (whole),
+or those joined to the wall by bridges, beams from each kept hub that lost a neighbour to the nearest point of the
+wall (bridge); with a skin, the body's wall of that thickness is united with the lattice trimmed to the inner
+offset. Editing the lattice or the body re-trims the part.
 
 Trimming shows FreeCAD's progress bar (and, when it lasts, a dialog with a Cancel button). A cancelled recompute
 keeps the previous shape and leaves the part touched (needing recompute), with a warning in the report view.

@@ -10,7 +10,8 @@ CURVED_LATTICE = "CurvedLattice"
 
 
 def get_type(obj):
-    """The workbench type tag of `obj` ("SteadyLattice", "LatticeFilter", "LatticePart", "LatticeMesh", "CurvedLattice"), or None."""
+    """The workbench type tag of `obj` ("SteadyLattice", "LatticeFilter", "LatticePart", "LatticeMesh",
+    "CurvedLattice"), or None."""
     proxy = getattr(obj, "Proxy", None) if obj is not None else None
     return getattr(proxy, "Type", None)
 
