@@ -68,6 +68,25 @@ class CurvedLatticeTest(unittest.TestCase):
         self.assertFalse(curved_lattice.becots_map(obj).is_flat)
         self.assertGreater(obj.Shape.BoundBox.ZMax, before.ZMax + 1.0)
 
+    def test_saved_and_reopened_with_its_links(self):
+        vertex = self.doc.addObject("Part::Vertex", "Corner")
+        vertex.X, vertex.Y, vertex.Z = CORNERS[1].x, CORNERS[1].y, CORNERS[1].z
+        self.doc.recompute()
+        obj = self.make(connectivity="kagome", links=[None, (vertex, ""), None, None])
+        balls, beams, name = obj.BallCount, obj.BeamCount, obj.Name
+        path = os.path.join(tempfile.mkdtemp(), "curved.FCStd")
+        self.doc.saveAs(path)
+        FreeCAD.closeDocument(self.doc.Name)
+        self.doc = FreeCAD.openDocument(path)
+        obj = self.doc.getObject(name)
+        self.assertEqual(obj.BLink[0].Name, "Corner")
+        obj.touch()
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertEqual((obj.BallCount, obj.BeamCount), (balls, beams))
+        self.assertEqual(obj.Connectivity, "kagome")
+        self.assertTrue(close(self.corners_of_map(obj)[1], CORNERS[1]))
+
     def test_corners_from_linked_vertices_follow_them(self):
         vertices = []
         for k, p in enumerate(CORNERS):

@@ -11,8 +11,8 @@ def make_curved_lattice(doc, corners=None, links=None, connectivity="triangle", 
     """Adds a CurvedLattice to `doc` and returns it (recompute the document to build it).
 
     corners: four points A = M(0,0), B = M(0,1), C = M(1,1), D = M(1,0) (FreeCAD vectors or triples), or None for
-    the defaults; links: four (object, "VertexN") pairs (or (object, "") for a Draft point) giving the corners
-    instead; connectivity: "triangle", "kagome" or "honeycomb"; cells: groups (along U, along V); layers and
+    the defaults; links: four (object, "VertexN") pairs (or (object, "") for a Draft point, or None for a typed
+    corner) giving the corners instead; connectivity: "triangle", "kagome" or "honeycomb"; cells: groups (along U, along V); layers and
     layer_raise (mm along the field's axis); join_layers (beams between the layers); node_radius (mm, at corner
     A); beam_ratio: beam over node radius (0: hulls of the balls). Bad values raise ValueError naming the
     parameter."""
@@ -34,8 +34,10 @@ def make_curved_lattice(doc, corners=None, links=None, connectivity="triangle", 
             for corner, p in zip(CORNERS, corners):
                 setattr(obj, corner, FreeCAD.Vector(*p))
         if links is not None:
-            for corner, (target, sub) in zip(CORNERS, links):
-                setattr(obj, corner + "Link", (target, [sub] if sub else []))
+            for corner, link in zip(CORNERS, links):
+                if link is not None:  # None: that corner stays typed
+                    target, sub = link
+                    setattr(obj, corner + "Link", (target, [sub] if sub else []))
         obj.Connectivity = connectivity
         obj.CellsU, obj.CellsV = cells
         obj.Layers = layers
