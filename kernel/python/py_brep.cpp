@@ -6,6 +6,7 @@
 
 #include "convert.hpp"
 #include "steady/brep/brep_io.hpp"
+#include "steady/brep/bridges.hpp"
 #include "steady/query/clean_check.hpp"
 #include "steady/lattice/flat_lattice.hpp"
 #include "steady/lattice/lattice.hpp"
@@ -98,6 +99,11 @@ void fill_stats(const steady::TrimStats& s, py::dict& d) {
   d["pores_reason"] = s.pores_reason;
   d["skin_pieces"] = s.skin_pieces;
   d["skin_pieces_volume"] = s.skin_pieces_volume;
+  d["kept_hubs"] = s.kept_hubs;
+  d["lost_neighbour_hubs"] = s.lost_neighbour_hubs;
+  d["bridges"] = s.bridges;
+  d["blocked_bridges"] = s.blocked_bridges;
+  d["ambiguous_bridges"] = s.ambiguous_bridges;
   d["faces"] = s.faces;
   d["volume"] = s.volume;
   d["boolean_seconds"] = s.boolean_seconds;
@@ -155,7 +161,8 @@ void bind_brep(py::module_& m) {
       py::arg("dump_dir") = "",
       "BREP text of the lattice as one solid (a compound of solids when it has several components). body: BREP "
       "text of a solid (Part.Shape.exportBrepToString()) to trim into; policy: 'clip' (cut at the boundary) or "
-      "'whole' (keep only hubs entirely inside, never cut); skin: wall thickness of a skin united with the "
+      "'whole' (keep only hubs entirely inside, never cut) or 'bridge' (the hubs 'whole' keeps, and from each that "
+      "lost a neighbour a bridge beam to the nearest point of the wall, cut there; dangling does not apply); skin: wall thickness of a skin united with the "
       "lattice; dangling: 'keep' or 'remove' beams joining a kept hub to a dropped one. progress: None or a "
       "callable progress(fraction) called on this thread about every 0.1 s with a growing fraction in [0, 1] "
       "(1 at the end); returning False cancels: steadylattice.Cancelled is raised soon after (an exception the "
@@ -164,9 +171,48 @@ void bind_brep(py::module_& m) {
       "to keep clusters apart), retried_clusters and of those "
       "relaid_/turned_/fuzzy_clusters (fuzzy: clipped with a tolerance of 1e-4 to 1e-3 of the cluster's size, "
       "exact only to that), holed_clusters (glued to the skin with no Boolean), relaid_out and union_through_pores "
-      "with their reasons, faces, volume (adaptive integration: FreeCAD's Shape.Volume can be 1e-3 off on crowded spheres), boolean_seconds, union_seconds. log: None or a callable log(message) receiving "
+      "with their reasons, with 'bridge' kept_hubs, lost_neighbour_hubs, bridges, blocked_bridges (refused: they would "
+      "meet another kept element) and ambiguous_bridges (several nearest points), faces, volume (adaptive integration: FreeCAD's Shape.Volume can be 1e-3 off on crowded spheres), boolean_seconds, union_seconds. log: None or a callable log(message) receiving "
       "the trim's diagnostics as they happen (build times, failed attempts, a union through the pores). dump_dir: "
       "a folder where a boundary cluster that fails every attempt is written as BREP, for study.");
+  lattice.def(
+      "bridge_plan",
+      [](const Lattice& lat, const std::string& body, double skin) {
+        const steady::BridgePlan plan = run_interruptible(
+            [&] { return steady::plan_bridges(steady::flatten(lat), steady::brep_from_text(body, "body"), skin); });
+        const steady::FlatLattice& f = plan.lattice;
+        py::array_t<double> centers({f.ball_count(), std::int64_t(3)}), radii(f.ball_count()), ra(f.beam_count()),
+            rb(f.beam_count());
+        py::array_t<std::int64_t> a(f.beam_count()), b(f.beam_count());
+        for (std::int64_t i = 0; i < f.ball_count(); ++i) {
+          for (int k = 0; k < 3; ++k) centers.mutable_at(i, k) = f.balls[i].center[k];
+          radii.mutable_at(i) = f.balls[i].radius;
+        }
+        for (std::int64_t e = 0; e < f.beam_count(); ++e) {
+          a.mutable_at(e) = f.beams[e].a;
+          b.mutable_at(e) = f.beams[e].b;
+          ra.mutable_at(e) = f.beams[e].ra;
+          rb.mutable_at(e) = f.beams[e].rb;
+        }
+        py::list bridges;
+        for (const steady::Bridge& br : plan.bridges)
+          bridges.append(py::dict(py::arg("hub") = br.hub, py::arg("wall") = vec3_array(br.wall),
+                                  py::arg("end") = vec3_array(br.end), py::arg("radius") = br.radius,
+                                  py::arg("ambiguous") = br.ambiguous));
+        py::dict d;
+        d["balls"] = py::make_tuple(centers, radii);
+        d["beams"] = py::make_tuple(a, b, ra, rb);
+        d["kept"] = py::array_t<std::int64_t>(plan.kept.size(), plan.kept.data());
+        d["bridges"] = bridges;
+        d["blocked"] = plan.blocked;
+        d["lost_neighbour_hubs"] = plan.lost_neighbour_hubs;
+        return d;
+      },
+      py::arg("body"), py::arg("skin") = 0.0,
+      "What brep(body, 'bridge', skin) trims with policy 'clip': {balls: (centers, radii), beams: (a, b, ra, rb)} of "
+      "the bridged lattice (the kept hubs first, then one far node per bridge; the beams between kept hubs, then the "
+      "bridges), kept (the source ball of each kept hub), bridges [{hub, wall, end, radius, ambiguous}], blocked "
+      "(hubs refused a bridge), lost_neighbour_hubs. For checks and pictures (docs/cots.md).");
   lattice.def(
       "write_step",
       [](const Lattice& lat, const std::string& path, const py::object& body, const std::string& policy, double skin,

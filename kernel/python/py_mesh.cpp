@@ -7,6 +7,9 @@
 #include <cstring>
 
 #include "convert.hpp"
+#include "steady/brep/brep_io.hpp"
+#include "steady/brep/bridges.hpp"
+#include "steady/brep/trim.hpp"
 #include "steady/lattice/flat_lattice.hpp"
 #include "steady/lattice/lattice.hpp"
 #include "steady/mesh/lattice_mesh.hpp"
@@ -69,13 +72,51 @@ steady::TriangleMesh to_triangle_mesh(const py::object& value, const std::string
 }
 
 // The lattice's mesh, trimmed into `body` (and with a skin down to `inner`) when given; its stats into `stats`.
+// How a trimmed mesh treats the hubs at the wall: policy 'clip', or 'bridge' with the body's B-rep (its nearest
+// points place the bridges) and the skin's thickness (its inner wall is the one bridged to).
+struct MeshPolicy {
+  std::string policy = "clip";
+  py::object brep = py::none();
+  double skin = 0.0;
+};
+
+// The lattice the mesh is made of: the lattice itself (clip), or its bridged lattice (plan_bridges), which the
+// body's mesh then clips like any lattice: the wall cuts only bridges. Bridge counts go into `stats`.
+steady::FlatLattice mesh_lattice(const Lattice& lat, const MeshPolicy& m, const py::object& body,
+                                 const py::object& inner, py::dict& stats) {
+  const steady::TrimPolicy policy = steady::trim_policy_from_string(m.policy);
+  if (policy == steady::TrimPolicy::Clip) {
+    if (!m.brep.is_none()) value_error("brep", "only policy 'bridge' uses the body's B-rep");
+    return steady::flatten(lat);
+  }
+  if (policy == steady::TrimPolicy::Whole)
+    value_error("policy", "a trimmed mesh clips ('clip') or bridges ('bridge'); 'whole' is the B-rep's only");
+  if (body.is_none()) value_error("policy", "'bridge' needs a body to trim into (body=, its mesh)");
+  if (m.brep.is_none() || !py::isinstance<py::str>(m.brep))
+    value_error("brep", "policy 'bridge' needs the body's BREP text (Part.Shape.exportBrepToString()): the bridges "
+                        "run to its nearest points");
+  if ((m.skin > 0.0) != !inner.is_none())
+    value_error("skin", "must be the thickness of the skin whose inner surface `inner` is (> 0 with inner, 0 without)");
+  const std::string text = m.brep.cast<std::string>();
+  const steady::BridgePlan plan = run_interruptible(
+      [&] { return steady::plan_bridges(steady::flatten(lat), steady::brep_from_text(text, "brep"), m.skin); });
+  stats["kept_hubs"] = static_cast<std::int64_t>(plan.kept.size());
+  stats["lost_neighbour_hubs"] = plan.lost_neighbour_hubs;
+  stats["bridges"] = static_cast<std::int64_t>(plan.bridges.size());
+  stats["blocked_bridges"] = static_cast<std::int64_t>(plan.blocked.size());
+  return plan.lattice;
+}
+
 steady::TriangleMesh lattice_mesh_of(const Lattice& lat, double tolerance, const py::object& body,
-                                     const py::object& inner, const py::object& progress, py::dict& stats) {
+                                     const py::object& inner, const py::object& progress, py::dict& stats,
+                                     const MeshPolicy& policy = {}) {
+  py::dict bridges;
+  const steady::FlatLattice flat = mesh_lattice(lat, policy, body, inner, bridges);
   if (body.is_none()) {
     if (!inner.is_none()) value_error("inner", "a skin's inner surface needs the body too");
     steady::LatticeMeshStats s;
     steady::TriangleMesh mesh = run_with_progress(progress, [&](steady::Progress& p) {
-      return steady::lattice_mesh(steady::flatten(lat), {tolerance}, &s, p);
+      return steady::lattice_mesh(flat, {tolerance}, &s, p);
     });
     stats = stats_dict(s);
     return mesh;
@@ -90,7 +131,7 @@ steady::TriangleMesh lattice_mesh_of(const Lattice& lat, double tolerance, const
   }
   steady::TrimmedMeshStats s;
   steady::TriangleMesh mesh = run_with_progress(progress, [&](steady::Progress& p) {
-    return steady::trimmed_lattice_mesh(steady::flatten(lat), {tolerance}, request, &s, p);
+    return steady::trimmed_lattice_mesh(flat, {tolerance}, request, &s, p);
   });
   stats = stats_dict(s.mesh);
   stats["inside_hubs"] = s.inside_hubs;
@@ -106,6 +147,7 @@ steady::TriangleMesh lattice_mesh_of(const Lattice& lat, double tolerance, const
   stats["classify_seconds"] = s.classify_seconds;
   stats["pieces_seconds"] = s.pieces_seconds;
   stats["join_seconds"] = s.join_seconds;
+  for (const auto& item : bridges) stats[item.first] = item.second;
   return mesh;
 }
 
@@ -114,7 +156,10 @@ steady::TriangleMesh lattice_mesh_of(const Lattice& lat, double tolerance, const
     " body: None, or (vertices, triangles) of a closed, outward mesh of the body the lattice is trimmed into: " \
     "hubs inside it are placed whole, outside ones dropped, and only the band of crossing hubs goes through a " \
     "Boolean (CGAL's corefinement). inner: with a body, None or the mesh of the body's inner offset: the skin " \
-    "between the two is united with the lattice, which is trimmed to the inner surface."
+    "between the two is united with the lattice, which is trimmed to the inner surface. policy: 'clip', or " \
+    "'bridge' (as for brep(): hubs whole inside kept, each that lost a neighbour bridged to the nearest wall " \
+    "point, the body's mesh cutting only bridges; needs brep=, the body's BREP text, and skin=, the thickness " \
+    "whose inner surface `inner` is; stats get kept_hubs, lost_neighbour_hubs, bridges, blocked_bridges)."
 
 }  // namespace
 
@@ -123,15 +168,18 @@ void bind_mesh(py::module_& m) {
   lattice.def(
       "to_mesh",
       [](const Lattice& lat, double tolerance, const py::object& body, const py::object& inner,
-         const py::object& progress, const py::object& stats) {
+         const py::object& progress, const py::object& stats, const std::string& policy, const py::object& brep,
+         double skin) {
         require_stats_target(stats);
         py::dict s;
-        const steady::TriangleMesh mesh = lattice_mesh_of(lat, tolerance, body, inner, progress, s);
+        const steady::TriangleMesh mesh =
+            lattice_mesh_of(lat, tolerance, body, inner, progress, s, {policy, brep, skin});
         fill_stats(stats, s);
         return mesh_arrays(mesh);
       },
       py::arg("tolerance"), py::arg("body") = py::none(), py::arg("inner") = py::none(),
-      py::arg("progress") = py::none(), py::arg("stats") = py::none(),
+      py::arg("progress") = py::none(), py::arg("stats") = py::none(), py::arg("policy") = "clip",
+      py::arg("brep") = py::none(), py::arg("skin") = 0.0,
       "The lattice as one closed, outward-oriented triangle mesh with no self-intersection, straight from its "
       "definition (no B-rep, no Boolean): (vertices float64 N x 3, triangles uint32 M x 3). tolerance: the largest "
       "distance, in model units, from a triangle to the exact ball or cone it approximates (every vertex lies on the "
@@ -146,11 +194,13 @@ void bind_mesh(py::module_& m) {
   lattice.def(
       "write_stl",
       [](const Lattice& lat, const std::string& path, double tolerance, const std::string& name,
-         const py::object& body, const py::object& inner, const py::object& progress, const py::object& stats) {
+         const py::object& body, const py::object& inner, const py::object& progress, const py::object& stats,
+         const std::string& policy, const py::object& brep, double skin) {
         require_stats_target(stats);
-        if (!body.is_none()) {
+        if (!body.is_none() || policy != "clip") {
           py::dict s;
-          const steady::TriangleMesh mesh = lattice_mesh_of(lat, tolerance, body, inner, progress, s);
+          const steady::TriangleMesh mesh =
+              lattice_mesh_of(lat, tolerance, body, inner, progress, s, {policy, brep, skin});
           {
             py::gil_scoped_release release;
             steady::write_stl(mesh, path, name);
@@ -165,22 +215,26 @@ void bind_mesh(py::module_& m) {
       },
       py::arg("path"), py::arg("tolerance"), py::arg("name") = "lattice", py::arg("body") = py::none(),
       py::arg("inner") = py::none(), py::arg("progress") = py::none(), py::arg("stats") = py::none(),
+      py::arg("policy") = "clip", py::arg("brep") = py::none(), py::arg("skin") = 0.0,
       "Writes the lattice's mesh (see to_mesh) as binary STL, streamed chunk by chunk: the whole mesh is never "
       "held, so lattices too large for an indexed mesh still reach the printer. Written beside the path and renamed "
-      "when complete: a failure or a cancel leaves no partial file. With a body (see to_mesh) the trimmed mesh is "
-      "made whole first.");
+      "when complete: a failure or a cancel leaves no partial file. With a body (see to_mesh: body, inner, policy, "
+      "brep, skin) the trimmed mesh is made whole first.");
   lattice.def(
       "write_obj",
       [](const Lattice& lat, const std::string& path, double tolerance, const std::string& name,
-         const py::object& body, const py::object& inner, const py::object& progress) {
+         const py::object& body, const py::object& inner, const py::object& progress, const std::string& policy,
+         const py::object& brep, double skin) {
         py::dict s;
-        const steady::TriangleMesh mesh = lattice_mesh_of(lat, tolerance, body, inner, progress, s);
+        const steady::TriangleMesh mesh =
+            lattice_mesh_of(lat, tolerance, body, inner, progress, s, {policy, brep, skin});
         py::gil_scoped_release release;
         steady::write_obj(mesh, path, name);
       },
       py::arg("path"), py::arg("tolerance"), py::arg("name") = "lattice", py::arg("body") = py::none(),
-      py::arg("inner") = py::none(), py::arg("progress") = py::none(),
-      "Writes the lattice's mesh (see to_mesh, body and inner too) as Wavefront OBJ.");
+      py::arg("inner") = py::none(), py::arg("progress") = py::none(), py::arg("policy") = "clip",
+      py::arg("brep") = py::none(), py::arg("skin") = 0.0,
+      "Writes the lattice's mesh (see to_mesh: body, inner, policy, brep, skin too) as Wavefront OBJ.");
   lattice.def(
       "write_3mf",
       [](const Lattice& lat, const std::string& path, const py::object& tolerance, bool beam_lattice,

@@ -65,7 +65,7 @@ class Ours:
         self.part, self.export = part, mesh_export
 
     def run(self, tolerance):
-        lattice, body, inner = self.export.part_meshes(self.part, tolerance)
+        lattice, body, inner, _ = self.export.part_meshes(self.part, tolerance)
         stats = {}
         vertices, triangles = lattice.to_mesh(tolerance, body=body, inner=inner, stats=stats)
         return vertices, triangles, stats
@@ -93,7 +93,7 @@ def at_equal_deviation(exact, ours, shape, tolerance, runs, lines):
     ours_s, ours_times, (vertices, triangles, stats) = median_seconds(lambda: ours.run(ours_tol), runs)
     their_s, their_times, theirs = median_seconds(lambda: meshpart(shape, their_tol), runs)
     path = "/tmp/bench_main_job_%d.stl" % os.getpid()
-    lattice, body, inner = ours.export.part_meshes(ours.part, ours_tol)
+    lattice, body, inner, _ = ours.export.part_meshes(ours.part, ours_tol)
     lattice.write_stl(path, ours_tol, body=body, inner=inner)
     ours_mesh = Mesh.Mesh(path)
     os.remove(path)

@@ -30,12 +30,15 @@
 #include "steady/core/progress.hpp"
 #include "steady/brep/step_assembly.hpp"
 #include "steady/brep/trim.hpp"
+#include "lattice_membership.hpp"
 #include "occ_reference.hpp"
 #include "test_lattices.hpp"
 #include "brick_definition.hpp"
 
 namespace steady {
 namespace {
+
+using test::in_lattice;
 
 // An axis-aligned cubic strut lattice: nodes at integer points of [0, n)^3, beams along x, y, z with end radii
 // that differ (general cones).
@@ -279,29 +282,6 @@ TEST(Trim, LoosePiecesOfTheLatticeGoToTheSkin) {
   const double balls = 4.0 / 3.0 * kPi * 2.0 + kPi * 0.25 * 4.0;  // balls and the whole beam: an upper bound
   EXPECT_LT(lattice, balls);
   EXPECT_GT(lattice, 4.0 / 3.0 * kPi * 2.0 - 1e-9);
-}
-
-// Brute-force membership in the lattice: a node ball, or the convex hull of a beam's two end balls (the union of
-// the balls interpolating them, so the distance to it is a convex function of the interpolation parameter).
-bool in_lattice(const FlatLattice& f, const Vec3& p) {
-  for (const Ball& b : f.balls)
-    if (glm::length(p - b.center) <= b.radius) return true;
-  for (const FlatBeam& b : f.beams) {
-    const Vec3 a = f.balls[b.a].center, c = f.balls[b.b].center;
-    // The hull lies between the segment thickened by the smaller and by the larger radius.
-    const double t0 = std::clamp(glm::dot(p - a, c - a) / glm::dot(c - a, c - a), 0.0, 1.0);
-    const double to_segment = glm::length(p - (a + t0 * (c - a)));
-    if (to_segment > std::max(b.ra, b.rb)) continue;
-    if (to_segment <= std::min(b.ra, b.rb)) return true;
-    auto g = [&](double t) { return glm::length(p - (a + t * (c - a))) - (b.ra + t * (b.rb - b.ra)); };
-    double lo = 0, hi = 1;
-    for (int it = 0; it < 80; ++it) {
-      const double m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
-      (g(m1) < g(m2) ? hi : lo) = (g(m1) < g(m2) ? m2 : m1);
-    }
-    if (g(0.5 * (lo + hi)) <= 0) return true;
-  }
-  return false;
 }
 
 TEST(Trim, CurvedBodiesAndGradedLatticesAgreeWithMonteCarlo) {

@@ -146,7 +146,7 @@ def test_curved_body_gives_a_valid_solid():
         (dict(body=body("box.brep"), skin=2.0), "skin:"),
         (dict(body=body("box.brep"), stats=[]), "stats: expected a dict"),
         (dict(skin=0.5), "skin: needs a body"),
-        (dict(body=body("box.brep"), policy="cut"), "policy: must be 'clip' or 'whole'"),
+        (dict(body=body("box.brep"), policy="cut"), "policy: must be 'clip', 'whole' or 'bridge'"),
         (dict(body=body("box.brep"), dangling="maybe"), "dangling:"),
         (dict(body=3.0), "body: expected BREP text"),
     ],

@@ -9,12 +9,14 @@
 
 This module only gathers the workbench's public functions; they live in their layers (make, kernel).
 """
-__all__ = ["make_lattice", "make_part", "make_filter", "make_mesh", "properties", "target_density", "lattice", "ball_index_of",
+__all__ = ["make_lattice", "make_curved_lattice", "make_part", "make_filter", "make_mesh", "properties",
+           "target_density", "lattice", "ball_index_of",
            "export", "export_shape", "get_type"]
 
 from latticewb.kernel import mass as _mass
 from latticewb.kernel.export import export, export_shape  # noqa: F401
 from latticewb.kernel.steady_lattice import lattice  # noqa: F401
+from latticewb.make.make_curved import make_curved_lattice  # noqa: F401
 from latticewb.make.make_filter import make_filter  # noqa: F401
 from latticewb.make.make_lattice import make_lattice  # noqa: F401
 from latticewb.make.make_mesh import make_mesh  # noqa: F401

@@ -141,6 +141,25 @@ double SolidBody::exact_distance(const Vec3& p) const {
   return best;
 }
 
+std::vector<Vec3> SolidBody::nearest_points(const Vec3& p) const {
+  const TopoDS_Vertex v = BRepBuilderAPI_MakeVertex(gp_Pnt(p.x, p.y, p.z)).Vertex();
+  double best = std::numeric_limits<double>::infinity();
+  std::vector<Vec3> out;
+  for (TopExp_Explorer x(solid_, TopAbs_SHELL); x.More(); x.Next()) {
+    BRepExtrema_DistShapeShape d(v, x.Current());
+    if (!d.IsDone() || d.NbSolution() < 1)
+      throw std::runtime_error("BRepExtrema failed to find the body's nearest point");
+    if (d.Value() > best) continue;
+    if (d.Value() < best) out.clear();
+    best = d.Value();
+    for (int k = 1; k <= d.NbSolution(); ++k) {
+      const gp_Pnt q = d.PointOnShape2(k);
+      out.emplace_back(q.X(), q.Y(), q.Z());
+    }
+  }
+  return out;
+}
+
 bool SolidBody::contains(const Vec3& p) const {
   BRepClass3d_SolidClassifier classifier(solid_, gp_Pnt(p.x, p.y, p.z), 1e-7);
   return classifier.State() != TopAbs_OUT;

@@ -19,7 +19,8 @@ namespace steady {
 TrimPolicy trim_policy_from_string(const std::string& name) {
   if (name == "clip") return TrimPolicy::Clip;
   if (name == "whole") return TrimPolicy::Whole;
-  fail_input("policy", "must be 'clip' or 'whole' (got '" + name + "')");
+  if (name == "bridge") return TrimPolicy::Bridge;
+  fail_input("policy", "must be 'clip', 'whole' or 'bridge' (got '" + name + "')");
 }
 
 DanglingBeams dangling_from_string(const std::string& name) {
@@ -180,6 +181,7 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
 
 TrimResult trim_lattice(const FlatLattice& f, const TopoDS_Shape& body_shape, const TrimOptions& options,
                         Progress& progress) {
+  if (options.policy == TrimPolicy::Bridge) return trim::trim_with_bridges(f, body_shape, options, progress);
   // OpenCASCADE's Booleans may fail on the boundary hubs (detected by the checks of each phase); their outcome
   // depends on how the spheres are parametrized and on how the hubs are grouped into clusters. The attempts, in
   // order: as asked; then, when cuts were moved, every cut halfway (larger clusters, other numbers in OpenCASCADE);

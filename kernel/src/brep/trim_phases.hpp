@@ -205,6 +205,12 @@ struct UnionContext {
 // the clipped clusters' faces.
 std::string band_faces(UnionContext& u, std::vector<TopoDS_Face>& kept, TrimStats& stats);
 
+// ---- policy Bridge --------------------------------------------------------------------------------------------
+
+// The bridged lattice (plan_bridges, steady/brep/bridges.hpp) trimmed with policy Clip, with the bridge counts.
+TrimResult trim_with_bridges(const FlatLattice& f, const TopoDS_Shape& body, const TrimOptions& options,
+                             Progress& progress);
+
 // ---- helpers shared by the phases ----------------------------------------------------------------------------
 
 TopoDS_Shape compound_of(const std::vector<TopoDS_Shape>& shapes);

@@ -15,6 +15,9 @@ bodies = {
     "skin_box.brep": Part.makeBox(5.4, 5.4, 5.4, FreeCAD.Vector(-0.7, -0.7, -0.7)),
     "cylinder.brep": Part.makeCylinder(1.6, 4.0, FreeCAD.Vector(1.5, 1.5, -0.5), FreeCAD.Vector(0.1, 0.05, 1.0)),
     "face.brep": Part.makePlane(2.0, 2.0),
+    # Conformal fills with bridges (test_bridge.py): a cylinder and a cone frustum about the z axis.
+    "bridge_cylinder.brep": Part.makeCylinder(20.0, 22.0, FreeCAD.Vector(0, 0, -1)),
+    "bridge_cone.brep": Part.makeCone(22.0, 8.0, 28.0),
 }
 for name, shape in bodies.items():
     with open(os.path.join(here, name), "w") as f:

@@ -57,6 +57,43 @@ class NewLatticeCommand:
         FreeCADGui.Control.showDialog(LatticeTaskPanel(obj, transaction=None))
 
 
+class NewCurvedLatticeCommand:
+    """Creates a CurvedLattice; four selected vertices (sketch points, Draft points, vertices of a shape), in the
+    order A, B, C, D, become its linked corners."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": resources.icon("CurvedLattice"),
+            "MenuText": "New curved lattice",
+            "ToolTip": "Create a BeCOTS lattice that follows the cone or plane through four corners: select four "
+                       "vertices (A = M(0,0), B = M(0,1), C = M(1,1), D = M(1,0)) to link them, or edit the "
+                       "corners in the property editor",
+        }
+
+    def IsActive(self):
+        return FreeCAD.ActiveDocument is not None
+
+    def Activated(self):
+        from latticewb import api
+        links = []
+        for selection in FreeCADGui.Selection.getSelectionEx():
+            names = [n for n in selection.SubElementNames if n.startswith("Vertex")]
+            if names:
+                links.extend((selection.Object, n) for n in names)
+            else:
+                shape = getattr(selection.Object, "Shape", None)
+                if shape is not None and len(shape.Vertexes) == 1:  # a Draft point
+                    links.append((selection.Object, ""))
+        if links and len(links) != 4:
+            FreeCAD.Console.PrintError("Curved lattice: select four vertices (A, B, C, D) or none (got %d)\n"
+                                       % len(links))
+            return
+        doc = FreeCAD.ActiveDocument
+        _create(doc, "New curved lattice", lambda: api.make_curved_lattice(doc, links=links or None))
+        if FreeCADGui.ActiveDocument and FreeCADGui.ActiveDocument.ActiveView:
+            FreeCADGui.SendMsgToActiveView("ViewFit")
+
+
 class LatticePartCommand:
     """Trims the selected lattice into the selected body (select the lattice, then the body) as one B-rep solid."""
 
@@ -64,20 +101,22 @@ class LatticePartCommand:
         return {
             "Pixmap": resources.icon("LatticePart"),
             "MenuText": "Lattice part",
-            "ToolTip": "Fill the selected body with the selected lattice: select a steady lattice and then a solid. "
-                       "Set the skin thickness and the trim policy (clip or whole hubs) in the property editor",
+            "ToolTip": "Fill the selected body with the selected lattice: select a steady or curved lattice and then "
+                       "a solid. Set the skin thickness and the trim policy (clip, whole hubs, or whole hubs "
+                       "bridged to the wall) in the property editor",
         }
 
     def IsActive(self):
-        return any(types.is_lattice(o) for o in FreeCADGui.Selection.getSelection())
+        return any(types.is_part_lattice(o) for o in FreeCADGui.Selection.getSelection())
 
     def Activated(self):
         from latticewb import api
         selection = FreeCADGui.Selection.getSelection()
-        lattices = [o for o in selection if types.is_lattice(o)]
-        bodies = [o for o in selection if not types.is_lattice(o) and hasattr(o, "Shape") and o.Shape.Solids]
+        lattices = [o for o in selection if types.is_part_lattice(o)]
+        bodies = [o for o in selection if not types.is_part_lattice(o) and hasattr(o, "Shape") and o.Shape.Solids]
         if len(lattices) != 1 or len(bodies) > 1:
-            FreeCAD.Console.PrintError("Lattice part: select one steady lattice and at most one solid body\n")
+            FreeCAD.Console.PrintError("Lattice part: select one steady or curved lattice and at most one solid "
+                                       "body\n")
             return
         doc = FreeCAD.ActiveDocument
         _create(doc, "Lattice part", lambda: api.make_part(doc, lattices[0], bodies[0] if bodies else None))
@@ -259,6 +298,7 @@ class ExportCommand:
 
 COMMANDS = {
     "Lattice_NewLattice": NewLatticeCommand(),
+    "Lattice_NewCurvedLattice": NewCurvedLatticeCommand(),
     "Lattice_Part": LatticePartCommand(),
     "Lattice_Mesh": MeshCommand(),
     "Lattice_Filter": FilterCommand(),
@@ -270,6 +310,7 @@ COMMANDS = {
 for _name, _command in COMMANDS.items():
     FreeCADGui.addCommand(_name, _command)
 
-TOOLBAR = ["Lattice_NewLattice", "Lattice_Filter", "Lattice_Part", "Lattice_Mesh", "Separator", "Lattice_Properties",
+TOOLBAR = ["Lattice_NewLattice", "Lattice_NewCurvedLattice", "Lattice_Filter", "Lattice_Part", "Lattice_Mesh",
+           "Separator", "Lattice_Properties",
            "Lattice_DensityTarget", "Separator", "Lattice_Export"]
 MENU = TOOLBAR

@@ -2,10 +2,10 @@
 STEP assembly of the skin and the lattice."""
 import FreeCAD
 
-from latticewb.kernel import steady_lattice
+from latticewb.kernel import curved_lattice, steady_lattice
 from latticewb.utils import types
 
-POLICIES = ["clip", "whole"]
+POLICIES = ["clip", "whole", "bridge"]
 DANGLING = ["keep", "remove"]
 
 
@@ -27,10 +27,11 @@ def body_brep(obj):
 def kernel_request(obj):
     """(placed steadylattice.Lattice, body BREP or None, policy, skin, dangling) of a LatticePart."""
     if obj.Lattice is None:
-        raise ValueError("Lattice: link a SteadyLattice to trim")
-    if not types.is_lattice(obj.Lattice):
-        raise ValueError("Lattice: %s is not a SteadyLattice" % obj.Lattice.Label)
-    return steady_lattice.lattice(obj.Lattice), body_brep(obj), obj.Policy, obj.Skin.Value, obj.Dangling
+        raise ValueError("Lattice: link a SteadyLattice or a CurvedLattice to trim")
+    if not types.is_part_lattice(obj.Lattice):
+        raise ValueError("Lattice: %s is not a SteadyLattice or a CurvedLattice" % obj.Lattice.Label)
+    source = curved_lattice if types.is_curved_lattice(obj.Lattice) else steady_lattice
+    return source.lattice(obj.Lattice), body_brep(obj), obj.Policy, obj.Skin.Value, obj.Dangling
 
 
 def part_brep(obj, report=None, stats=None):

@@ -9,6 +9,7 @@ MAX_SOLID_ELEMENTS = 5000
 # Past this many elements a compound of separate solids takes minutes and gigabytes: refused, with a pointer to
 # the preview (display) and LatticePart (exact geometry).
 MAX_SEPARATE_SOLIDS = 200000
+_SAME_RADIUS = 1e-7  # mm: Precision::Confusion, below which BRepPrimAPI_MakeCone fails
 _REPORT_EVERY = 500  # elements between progress reports (~0.1 s of work)
 
 
@@ -24,9 +25,10 @@ def beam_frustum(ca, ra, cb, rb):
     cos_phi = (1.0 - sin_phi * sin_phi) ** 0.5
     start = ca + axis * (ra * sin_phi)
     height = length * cos_phi * cos_phi  # from ra sin(phi) to length + rb sin(phi)
-    if ra == rb:
-        return Part.makeCylinder(ra, height, start, axis)
-    return Part.makeCone(ra * cos_phi, rb * cos_phi, height, start, axis)
+    r1, r2 = ra * cos_phi, rb * cos_phi
+    if abs(r1 - r2) < _SAME_RADIUS:  # OpenCASCADE refuses a cone whose radii agree to its confusion tolerance
+        return Part.makeCylinder(0.5 * (r1 + r2), height, start, axis)
+    return Part.makeCone(r1, r2, height, start, axis)
 
 
 def lattice_shape(lattice, report=None, ball_mask=None, beam_mask=None):

@@ -1,4 +1,5 @@
-"""Checks of the properties of the features made from a lattice: LatticeFilter, LatticePart and LatticeMesh.
+"""Checks of the properties of the features made from a lattice (LatticeFilter, LatticePart and LatticeMesh) and of
+the CurvedLattice.
 
 property_checks applies them as it does the SteadyLattice's: nonsense is refused as it is set (the last good value
 comes back, a warning names the property) and fails the recompute naming the property when it got in anyway.
@@ -13,14 +14,17 @@ _MIN_SKIN = 1e-4  # mm: thinner walls are below what OpenCASCADE's offsets make 
 _MAX_STENCIL_CELLS = 1000000  # one character per cell of the period: more is no mask anyone types
 
 LINKS = ("Source", "Coarse", "Body", "Lattice")
+CORNER_LINKS = ("ALink", "BLink", "CLink", "DLink")  # a CurvedLattice's vertices: (object, [sub-element])
 
 
 def enumerations():
     """The values each enumeration of the three features may take; a Python console may replace the list itself
     (obj.Kind = ['a', 'b']), which FreeCAD accepts and the kernel would read as some other choice."""
     from latticewb.kernel.lattice_filter import GYROID_MODES, KINDS
+    from latticewb.kernel.curved_lattice import CONNECTIVITIES
     from latticewb.kernel.lattice_part import DANGLING, POLICIES
-    return {"Kind": KINDS, "GyroidMode": GYROID_MODES, "Policy": POLICIES, "Dangling": DANGLING}
+    return {"Kind": KINDS, "GyroidMode": GYROID_MODES, "Policy": POLICIES, "Dangling": DANGLING,
+            "Connectivity": CONNECTIVITIES}
 
 
 def _length(obj, prop):
@@ -65,7 +69,8 @@ def _link_problem(obj, prop):
 def _source_problem(obj, prop, needs):
     """A link to a lattice: `needs` is types.is_lattice (a SteadyLattice) or types.is_lattice_source (or a filter)."""
     linked = getattr(obj, prop)
-    what = "a SteadyLattice" if needs is types.is_lattice else "a SteadyLattice or a LatticeFilter"
+    what = {types.is_lattice: "a SteadyLattice", types.is_part_lattice: "a SteadyLattice or a CurvedLattice"}.get(
+        needs, "a SteadyLattice or a LatticeFilter")
     if linked is None:
         return "is empty: link %s" % what
     if not needs(linked):
@@ -128,7 +133,7 @@ def _filter_problem(obj, prop):
 
 def _part_problem(obj, prop):
     if prop == "Lattice":
-        return _source_problem(obj, prop, types.is_lattice)
+        return _source_problem(obj, prop, types.is_part_lattice)
     if prop == "Body":
         return _body_problem(obj, True)
     if prop == "Skin":
@@ -154,8 +159,37 @@ def _mesh_problem(obj, prop):
     return None
 
 
+def _curved_problem(obj, prop):
+    if prop in ("A", "B", "C", "D"):
+        p = getattr(obj, prop)
+        for x in (p.x, p.y, p.z):
+            found = _size_problem(abs(x), "coordinate")
+            if found:
+                return "corner %s %s" % (tuple(p), found)
+        return None
+    if prop in CORNER_LINKS:
+        from latticewb.kernel.curved_lattice import linked_point
+        try:
+            linked_point(obj, prop[0])
+        except ValueError as error:
+            return str(error).partition(": ")[2]
+        return None
+    if prop == "NodeRadius":
+        radius = _length(obj, prop)
+        found = _size_problem(radius)
+        return found if found else (None if radius > 0.0 else "must be > 0 (got %g)" % radius)
+    if prop == "LayerRaise":
+        return _size_problem(abs(_length(obj, prop)), "distance")
+    if prop == "BeamRatio":
+        ratio = obj.BeamRatio
+        if not (math.isfinite(ratio) and 0.0 <= ratio <= 1.0):
+            return "must lie in [0, 1] (got %g; 0: beams are the hulls of their balls)" % ratio
+        return None
+    return None
+
+
 _PROBLEMS = {types.LATTICE_FILTER: _filter_problem, types.LATTICE_PART: _part_problem,
-             types.LATTICE_MESH: _mesh_problem}
+             types.LATTICE_MESH: _mesh_problem, types.CURVED_LATTICE: _curved_problem}
 
 
 def problem(obj, prop):
@@ -170,6 +204,8 @@ def problem(obj, prop):
 def refused_when_set(obj, prop):
     """Whether a nonsense value of prop is refused as it is set: every property but links, and links that make
     a cycle (FreeCAD would not recompute the feature at all, so no error would name the link)."""
+    if prop in CORNER_LINKS:
+        return False  # a vertex that went away with an edit of its sketch: said at recompute
     return prop not in LINKS or _link_problem(obj, prop) is not None
 
 

@@ -1,9 +1,11 @@
 """LatticePart: a steady lattice trimmed into a body, optionally with a skin, as one exact B-rep solid.
 
-Links to a SteadyLattice and to a body (any object whose Shape holds a closed solid: a Part primitive, a PartDesign
-Body, an imported STEP part). The kernel classifies every hub against the body, keeps inside hubs whole, drops
-outside ones and cuts only the crossing hubs; with a skin, the body's wall of that thickness is united with the
-lattice trimmed to the inner offset. Editing the lattice or the body re-trims the part.
+Links to a SteadyLattice (or a CurvedLattice) and to a body (any object whose Shape holds a closed solid: a Part
+primitive, a PartDesign Body, an imported STEP part). The kernel classifies every hub against the body, keeps inside
+hubs whole, drops outside ones and cuts only the crossing hubs (policy clip), keeps only hubs whole inside (whole),
+or those joined to the wall by bridges, beams from each kept hub that lost a neighbour to the nearest point of the
+wall (bridge); with a skin, the body's wall of that thickness is united with the lattice trimmed to the inner
+offset. Editing the lattice or the body re-trims the part.
 
 Trimming shows FreeCAD's progress bar (and, when it lasts, a dialog with a Cancel button). A cancelled recompute
 keeps the previous shape and leaves the part touched (needing recompute), with a warning in the report view.
@@ -17,12 +19,13 @@ from latticewb.utils import types
 from latticewb.utils.proxies import StatelessProxy, add_missing_properties
 
 _PROPERTIES = [
-    ("App::PropertyLink", "Lattice", "Part", "The SteadyLattice to trim"),
+    ("App::PropertyLink", "Lattice", "Part", "The SteadyLattice or CurvedLattice to trim"),
     ("App::PropertyLink", "Body", "Part", "The solid the lattice fills (empty: the whole lattice as one part)"),
     ("App::PropertyEnumeration", "Policy", "Part",
-     "clip: cut the lattice at the body's boundary; whole: keep only hubs entirely inside, never cut"),
+     "clip: cut the lattice at the body's boundary; whole: keep only hubs entirely inside, never cut; bridge: the "
+     "hubs whole keeps, each that lost a neighbour joined to the wall (or skin) by a beam to its nearest point"),
     ("App::PropertyEnumeration", "Dangling", "Part",
-     "keep or remove the beams that join a kept hub to a dropped one"),
+     "keep or remove the beams that join a kept hub to a dropped one (bridge: always replaced by bridges)"),
     ("App::PropertyLength", "Skin", "Part",
      "Wall thickness of a skin (the body's inward offset) united with the lattice; 0: no skin"),
     ("App::PropertyFloat", "Volume", "Result", "Volume of the part in mm^3 (read only)"),
@@ -101,6 +104,10 @@ def report_trim(label, stats):
     if stats["relaid_out"]:
         FreeCAD.Console.PrintMessage("%s: trimmed on a later attempt, the first having failed (%s)\n"
                                      % (label, stats["relaid_reason"]))
+    if stats.get("blocked_bridges"):
+        FreeCAD.Console.PrintWarning(
+            "%s: %d of %d hubs that lost a neighbour got no bridge (it would run into another kept element); they "
+            "stay joined by their other beams\n" % (label, stats["blocked_bridges"], stats["lost_neighbour_hubs"]))
     if stats["union_through_pores"]:
         FreeCAD.Console.PrintMessage("%s: the union with the skin went through the pores (%s)\n"
                                      % (label, stats["pores_reason"]))

@@ -221,7 +221,7 @@ def check_lattice_property(obj, prop):
         return _refuse(obj, prop, found)
     if found:
         return  # a link: said at recompute
-    if _clamp(obj, prop):
+    if not feature_checks.checked(obj) and _clamp(obj, prop):  # the clamps are the SteadyLattice's
         return
     if prop not in _NOT_RESTORED and prop in obj.PropertiesList:
         _last_good(obj)[prop] = getattr(obj, prop)

@@ -6,16 +6,27 @@ STEADY_LATTICE = "SteadyLattice"
 LATTICE_FILTER = "LatticeFilter"
 LATTICE_PART = "LatticePart"
 LATTICE_MESH = "LatticeMesh"
+CURVED_LATTICE = "CurvedLattice"
 
 
 def get_type(obj):
-    """The workbench type tag of `obj` ("SteadyLattice", "LatticeFilter", "LatticePart", "LatticeMesh"), or None."""
+    """The workbench type tag of `obj` ("SteadyLattice", "LatticeFilter", "LatticePart", "LatticeMesh",
+    "CurvedLattice"), or None."""
     proxy = getattr(obj, "Proxy", None) if obj is not None else None
     return getattr(proxy, "Type", None)
 
 
 def is_lattice(obj):
     return get_type(obj) == STEADY_LATTICE
+
+
+def is_curved_lattice(obj):
+    return get_type(obj) == CURVED_LATTICE
+
+
+def is_part_lattice(obj):
+    """A lattice a LatticePart can trim: a SteadyLattice or a CurvedLattice."""
+    return get_type(obj) in (STEADY_LATTICE, CURVED_LATTICE)
 
 
 def is_lattice_source(obj):

@@ -57,6 +57,11 @@ class ViewProviderSteadyLattice(ViewProviderLatticePreview):
         return True
 
 
+class ViewProviderCurvedLattice(ViewProviderLatticePreview):
+    def getIcon(self):
+        return resources.icon("CurvedLattice")
+
+
 class InputsAsChildren:
     """Shows the feature's input links (the names in `inputs`) as its children in the tree, hidden like a Boolean's
     inputs; deleting the feature shows them again."""

@@ -8,6 +8,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "steady/lattice/broad_phase.hpp"
 #include "steady/core/vec.hpp"
@@ -42,6 +43,9 @@ class SolidBody {
   double distance_lower_bound(const Vec3& p) const;
   // The distance from p to the boundary (BRepExtrema; serial).
   double exact_distance(const Vec3& p) const;
+  // The points of the boundary nearest to p (BRepExtrema's solutions at the least distance, over every shell;
+  // several where p lies on the medial axis; serial).
+  std::vector<Vec3> nearest_points(const Vec3& p) const;
   // True when p lies inside (BRepClass3d; serial). Points within tolerance of the boundary count as inside.
   bool contains(const Vec3& p) const;
 

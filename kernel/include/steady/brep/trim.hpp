@@ -8,7 +8,9 @@
 //   policy Clip  - inside hubs are kept whole (Boolean-free B-rep), outside hubs dropped, and only the crossing
 //                  hubs, closed by disks at their cuts toward kept hubs, meet the body in one Common; the result
 //                  is glued to the rest along the circles of those disks (the disks are removed);
-//   policy Whole - only hubs entirely inside are kept, never cut (no Boolean at all).
+//   policy Whole - only hubs entirely inside are kept, never cut (no Boolean at all);
+//   policy Bridge - the hubs Whole keeps, and from each that lost a neighbour a bridge beam to the nearest point of
+//                  the wall, clipped there (steady/brep/bridges.hpp: the bridged lattice is trimmed with Clip).
 // Dangling beams (joining a kept hub to a dropped one) are kept as stumps closed at their cut, or removed.
 // With a skin of thickness t, the part is skin(t) united with the lattice trimmed to the inner offset: hubs are
 // classified against the inner boundary, and only the hubs crossing it take part in the union with the skin.
@@ -24,10 +26,10 @@
 
 namespace steady {
 
-enum class TrimPolicy { Clip, Whole };
+enum class TrimPolicy { Clip, Whole, Bridge };
 enum class DanglingBeams { Keep, Remove };
 
-TrimPolicy trim_policy_from_string(const std::string& name);        // "clip" | "whole"
+TrimPolicy trim_policy_from_string(const std::string& name);        // "clip" | "whole" | "bridge"
 DanglingBeams dangling_from_string(const std::string& name);        // "keep" | "remove"
 
 struct TrimOptions {
@@ -67,6 +69,11 @@ struct TrimStats {
   bool relaid_out = false;                // the first attempt failed as a whole; a later one (every cut halfway,
                                           // or the spheres laid out the other way) made the part
   std::string relaid_reason;              //   why the earlier attempts failed
+  // Policy Bridge (then the other counts are of the bridged lattice's trim, but inside/outside/crossing of the
+  // lattice's own hubs): hubs kept whole, those of them that lost a neighbour, bridges made, bridges refused
+  // because they would meet another kept element (their hubs stay unbridged, named through `report`), bridges
+  // whose hub had several nearest points on the wall (the first taken).
+  std::int64_t kept_hubs = 0, lost_neighbour_hubs = 0, bridges = 0, blocked_bridges = 0, ambiguous_bridges = 0;
   std::int64_t faces = 0;
   double volume = 0.0;  // of the part (shape_volume), filled by lattice_part_brep
   double classify_seconds = 0.0, build_seconds = 0.0, boolean_seconds = 0.0, assemble_seconds = 0.0;

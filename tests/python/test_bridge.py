@@ -1,0 +1,190 @@
+"""The trim policy 'bridge' on conformal BeCOTS stacks: a cylinder filled with stacked polar discs (rings that follow
+its wall), without and with a skin, and a cone filled with stacked sheets rolled onto it. Each part: one valid solid;
+every kept hub whole inside the wall (the inner wall with a skin); one bridge per kept hub that lost a neighbour,
+toward its nearest wall point (checked against the body's closed form); the volume against Monte Carlo membership
+in the bridged lattice (brute force) inside the wall, plus the skin in closed form."""
+import math
+import os
+
+import numpy as np
+import pytest
+
+import steadylattice as sl
+from brute_force import inside_lattice
+
+DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data")
+
+
+def body(name):
+    with open(os.path.join(DATA, name)) as f:
+        return f.read()
+
+
+def stacked(apex, a, nu, nv, layers, dilation, radius, layer_raise):
+    """Triangle-connectivity BeCOTS stack about the z axis through `apex`: nu groups around (a ring open by two
+    spacings: a whole turn would make corners coincide), nv rings dilated by `dilation` in all, the layers joined."""
+    m = sl.BecotsMap.from_field(apex, (0, 0, 1), a, complex(0, 2 * math.pi * nu / (nu + 1)),
+                                complex(math.log(dilation), 0))
+    nodes, beams = sl.becots_connectivity("triangle")
+    beams = list(beams) + [(n, 0, 0, 1, n) for n in range(len(nodes))]
+    return sl.becots_lattice(m, (nodes, beams), (nu, nv, layers), radius, layer_raise=layer_raise, beam_ratio=0.5)
+
+
+class Cylinder:
+    """The body of bridge_cylinder.brep: radius 20 about the z axis, z from -1 to 21."""
+    brep, lo, hi = "bridge_cylinder.brep", (-20, -20, -1), (20, 20, 21)
+
+    @staticmethod
+    def distance(p):
+        return np.minimum(20.0 - np.hypot(p[..., 0], p[..., 1]), np.minimum(p[..., 2] + 1.0, 21.0 - p[..., 2]))
+
+    @staticmethod
+    def skin_volume(t):
+        return math.pi * (20.0 ** 2 * 22.0 - (20.0 - t) ** 2 * (22.0 - 2 * t))
+
+    @staticmethod
+    def lattice():
+        # discs in the plane z = 1 and raised along the axis; the sixth ring reaches the wall and is dropped
+        return stacked((0, 0, 1.0), (7.0, 0, 1.0), 16, 6, 3, 24.0 / 7.0, 0.35, 2.5)
+
+
+class Cone:
+    """The body of bridge_cone.brep: radius 22 at z = 0 to 8 at z = 28 about the z axis (apex at z = 44)."""
+    brep, lo, hi = "bridge_cone.brep", (-22, -22, 0), (22, 22, 28)
+    cos_a = 1.0 / math.hypot(1.0, 0.5)
+
+    @classmethod
+    def distance(cls, p):
+        lateral = (22.0 - 0.5 * p[..., 2] - np.hypot(p[..., 0], p[..., 1])) * cls.cos_a
+        return np.minimum(lateral, np.minimum(p[..., 2], 28.0 - p[..., 2]))
+
+    @staticmethod
+    def lattice():
+        # sheets on the cone's own half-angle, 0.6 down its axis (0.27 inside the wall: the outer layer crosses
+        # it and is dropped), rings growing down past the base, layers 3 further down each
+        apex = 44.0 - 0.6
+        return stacked((0, 0, apex), ((apex - 24.0) * 0.5, 0, 24.0), 20, 5, 3, 2.6, 0.35, -3.0)
+
+
+@pytest.mark.parametrize("shape, skin", [(Cylinder, 0.0), (Cone, 0.0), (Cylinder, 0.8)],
+                         ids=["cylinder", "cone", "cylinder with skin"])
+def test_conformal_fill_with_bridges(shape, skin):
+    lat, text = shape.lattice(), body(shape.brep)
+    stats = {}
+    props = sl.brep_properties(lat.brep(text, "bridge", skin=skin, stats=stats))
+    assert props["valid"], props["report"]
+    assert props["solids"] == 1
+    assert not stats["union_through_pores"]
+    plan = lat.bridge_plan(text, skin)
+    centers, radii = lat.balls()
+    kept = plan["kept"]
+
+    def wall_distance(p):
+        return shape.distance(p) - skin
+
+    # kept hubs: whole inside the wall; every hub whose ball reaches it: dropped
+    assert np.all(wall_distance(centers[kept]) > radii[kept])
+    assert not (set(np.nonzero(wall_distance(centers) < radii)[0].tolist()) & set(kept.tolist()))
+    # hubs that lost a neighbour, counted here: one bridge each, none blocked
+    is_kept = np.zeros(lat.ball_count, dtype=bool)
+    is_kept[kept] = True
+    a, b, _, _ = lat.beams()
+    lost = set(a[is_kept[a] & ~is_kept[b]].tolist()) | set(b[is_kept[b] & ~is_kept[a]].tolist())
+    assert len(lost) > 0
+    assert plan["lost_neighbour_hubs"] == len(lost) == stats["lost_neighbour_hubs"]
+    assert sorted(br["hub"] for br in plan["bridges"]) == sorted(lost)
+    assert plan["blocked"] == [] and stats["blocked_bridges"] == 0
+    assert stats["bridges"] == len(lost) and stats["kept_hubs"] == len(kept)
+    for br in plan["bridges"]:
+        c = centers[br["hub"]]
+        assert abs(wall_distance(br["wall"])) < 1e-6  # on the wall
+        assert abs(np.linalg.norm(br["wall"] - c) - wall_distance(c)) < 1e-6  # the nearest point
+    # the part is the bridged lattice inside the wall, and the skin
+    bridged = Bridged(plan)
+    rng = np.random.default_rng(15)
+    samples = 200000
+    points = rng.uniform(shape.lo, shape.hi, size=(samples, 3))
+    points = points[wall_distance(points) >= 0.0]
+    box = float(np.prod(np.subtract(shape.hi, shape.lo)))
+    p = inside_lattice(points, bridged).sum() / samples
+    estimate = box * p + (shape.skin_volume(skin) if skin else 0.0)
+    sigma = box * math.sqrt(p * (1 - p) / samples)
+    assert abs(props["volume"] - estimate) < 4 * sigma, (props["volume"], estimate, sigma)
+
+
+class Bridged:
+    """The bridged lattice of bridge_plan() with the balls() / beams() a Lattice has, for the brute force."""
+
+    def __init__(self, plan):
+        self._balls, self._beams = plan["balls"], plan["beams"]
+
+    def balls(self):
+        return self._balls
+
+    def beams(self):
+        return self._beams
+
+
+def test_bridge_policy_errors_name_the_policy():
+    lat = Cylinder.lattice()
+    with pytest.raises(ValueError, match="policy.*'bridge'"):
+        lat.brep(body(Cylinder.brep), "bridges")
+    with pytest.raises(ValueError, match="body"):
+        lat.bridge_plan("not BREP")
+
+
+def prism(sides=512, radius=20.0, z0=-1.0, z1=21.0):
+    """A closed, outward mesh of the regular prism inscribed in the cylinder of bridge_cylinder.brep."""
+    t = 2 * math.pi * np.arange(sides) / sides
+    ring = np.column_stack([radius * np.cos(t), radius * np.sin(t)])
+    vertices = np.vstack([np.column_stack([ring, np.full(sides, z0)]), np.column_stack([ring, np.full(sides, z1)]),
+                          [(0, 0, z0), (0, 0, z1)]])
+    k, n = np.arange(sides), (np.arange(sides) + 1) % sides
+    bottom, top = 2 * sides, 2 * sides + 1
+    triangles = np.vstack([np.column_stack([k, n, n + sides]), np.column_stack([k, n + sides, k + sides]),
+                           np.column_stack([np.full(sides, bottom), n, k]),
+                           np.column_stack([np.full(sides, top), k + sides, n + sides])])
+    return vertices, triangles
+
+
+def test_bridged_mesh_is_closed_with_the_bridged_volume():
+    """to_mesh(policy='bridge'): the bridged lattice clipped by the body's mesh (a 512-gon prism in the cylinder):
+    closed and consistently oriented, the bridge counts of the B-rep, and the volume against Monte Carlo in the
+    prism within 4 sigma plus the chord bound (tolerance x area), and against the B-rep part within the chord
+    bound."""
+    from test_mesh import edge_report, volume_and_area
+    lat, text = Cylinder.lattice(), body(Cylinder.brep)
+    tolerance, stats = 0.01, {}
+    vertices, triangles = lat.to_mesh(tolerance, body=prism(), policy="bridge", brep=text, stats=stats)
+    assert edge_report(triangles) == (0, 0, 0)
+    plan = lat.bridge_plan(text)
+    assert stats["bridges"] == stats["lost_neighbour_hubs"] == len(plan["bridges"]) > 0
+    assert stats["blocked_bridges"] == 0 and stats["kept_hubs"] == len(plan["kept"])
+    volume, area = volume_and_area(vertices, triangles)
+    rng = np.random.default_rng(16)
+    samples = 200000
+    points = rng.uniform(Cylinder.lo, Cylinder.hi, size=(samples, 3))
+    angles = 2 * math.pi * np.arange(512) / 512
+    normals = np.column_stack([np.cos(angles + math.pi / 512), np.sin(angles + math.pi / 512)])
+    inside = np.all(points[:, :2] @ normals.T <= 20.0 * math.cos(math.pi / 512), axis=1)
+    points = points[inside & (points[:, 2] >= -1.0) & (points[:, 2] <= 21.0)]
+    box = float(np.prod(np.subtract(Cylinder.hi, Cylinder.lo)))
+    p = inside_lattice(points, Bridged(plan)).sum() / samples
+    estimate, sigma = box * p, box * math.sqrt(p * (1 - p) / samples)
+    assert abs(volume - estimate) < 4 * sigma + tolerance * area, (volume, estimate, sigma, tolerance * area)
+    # the B-rep part of the same policy in the exact cylinder (the prism lies within 4e-4 of it): within the chord
+    # bound of the mesh, a sharper check than the Monte Carlo one
+    exact = sl.brep_properties(lat.brep(text, "bridge"))["volume"]
+    assert abs(volume - exact) < tolerance * area, (volume, exact, tolerance * area)
+
+
+def test_bridged_mesh_arguments_are_checked():
+    lat, text = Cylinder.lattice(), body(Cylinder.brep)
+    with pytest.raises(ValueError, match="brep"):
+        lat.to_mesh(0.01, body=prism(), policy="bridge")
+    with pytest.raises(ValueError, match="policy.*whole"):
+        lat.to_mesh(0.01, body=prism(), policy="whole", brep=text)
+    with pytest.raises(ValueError, match="policy.*body"):
+        lat.to_mesh(0.01, policy="bridge", brep=text)
+    with pytest.raises(ValueError, match="skin"):
+        lat.to_mesh(0.01, body=prism(), policy="bridge", brep=text, skin=0.5)
