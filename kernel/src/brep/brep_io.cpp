@@ -26,6 +26,7 @@
 #include <ios>
 #include <sstream>
 
+#include "brep/child_reader.hpp"
 #include "brep/occ_progress.hpp"
 #include "steady/core/errors.hpp"
 
@@ -60,6 +61,22 @@ TopoDS_Shape brep_from_text(const std::string& text, const std::string& field) {
   if (shape.IsNull()) fail_input(field, "is not BREP text, or holds no shape");
   require_complete_geometry(shape, field);
   return shape;
+}
+
+TopoDS_Shape read_body_brep(const std::string& text, const std::string& field,
+                            const std::function<void(const TopoDS_Shape&)>& check) {
+  const std::string binary = run_in_child(
+      [&] {
+        const TopoDS_Shape shape = brep_from_text(text, field);
+        // Every caller checks the body next (validity, trimming), and the checker has crashed on shapes the reader
+        // left incomplete (docs/reliability.md): it runs here first, where a crash is an error (sequential: the
+        // child has no TBB workers).
+        BRepCheck_Analyzer(shape, Standard_True, Standard_False).IsValid();
+        if (check) check(shape);
+        return shape_to_binary(shape);
+      },
+      field, "the BREP text", "BREP reader");
+  return shape_from_binary(binary);
 }
 
 namespace {
