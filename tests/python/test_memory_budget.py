@@ -110,3 +110,28 @@ def test_materialize_of_ten_billion_balls_is_refused_up_front():
 def test_without_a_limit_the_budget_is_the_machines():
     message = run_limited("report(lambda: cubic((1000, 1000, 1000)).query_ball((500, 500, 500), 2000.0))")
     assert "this machine has available" in message
+
+
+def test_a_mesh_with_a_tiny_tolerance_is_refused_before_work_under_rlimit_as():
+    """Issue 16, item 2: to_mesh, write_obj and write_3mf hold the whole mesh; at 1e-6 on balls of 0.2 the mesh of
+    30^3 cells is far beyond 2 GiB. Refused at once, from the estimate, naming RLIMIT_AS and a tolerance that fits;
+    a streamed STL holds only the templates and is refused only when those cannot fit."""
+    code = """
+import time
+L = cubic((30, 30, 30))
+t0 = time.time()
+report(lambda: L.to_mesh(1e-6))
+print("seconds", time.time() - t0)
+"""
+    lines = subprocess.run([sys.executable, "-c", PRELUDE + code], capture_output=True, text=True, timeout=900,
+                           preexec_fn=lambda: resource.setrlimit(resource.RLIMIT_AS, (2 * GIB, 2 * GIB))).stdout
+    message, seconds = lines.strip().splitlines()[-2:]
+    assert message.startswith("MemoryError: mesh: about "), message
+    assert "triangles (estimated from the tolerance 1e-06 and the balls' radii, before any is made)" in message
+    assert "RLIMIT_AS" in message and "a tolerance of " in message and "or more fits" in message, message
+    assert "write STL (streamed" in message and "write_3mf(beam_lattice=True)" in message, message
+    assert float(seconds.split()[1]) < 5.0
+    estimate, budget, _ = figures(message)
+    assert estimate > budget
+    tolerance = float(re.search(r"a tolerance of ([\d.e+-]+) or more fits", message).group(1))
+    assert 1e-6 < tolerance < 0.05  # below a quarter of the radius, the largest tolerance the balls allow
