@@ -5,7 +5,9 @@
 #include <BRepClass3d_SolidClassifier.hxx>
 #include <BRep_Tool.hxx>
 #include <Precision.hxx>
+#include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Shape.hxx>
 #include <TopoDS_Solid.hxx>
@@ -53,6 +55,14 @@ class InsideBrep : public NodeFilter {
 FilterPtr inside_brep(const std::string& brep_text, const std::string& field) {
   const TopoDS_Shape shape = read_body_brep(brep_text, field, [&](const TopoDS_Shape& read) {
     if (!TopExp_Explorer(read, TopAbs_SOLID).More()) fail_input(field, "is not a solid (the shape holds no solid)");
+    // Several solids are their union (a node inside any is kept). A face outside every solid (a loose face or open
+    // shell beside them) bounds no volume, and would be ignored without a word: refused.
+    TopTools_IndexedMapOfShape faces, solid_faces;
+    TopExp::MapShapes(read, TopAbs_FACE, faces);
+    for (TopExp_Explorer x(read, TopAbs_SOLID); x.More(); x.Next()) TopExp::MapShapes(x.Current(), TopAbs_FACE, solid_faces);
+    if (faces.Extent() > solid_faces.Extent())
+      fail_input(field, "holds " + std::to_string(faces.Extent() - solid_faces.Extent()) +
+                            " faces outside its solids (a loose face or open shell bounds no volume): give solids only");
     if (!BRepCheck_Analyzer(read, Standard_True, Standard_False).IsValid())
       fail_input(field, "is not a valid solid (BRepCheck_Analyzer)");
     for (TopExp_Explorer s(read, TopAbs_SOLID); s.More(); s.Next())
