@@ -135,3 +135,26 @@ print("seconds", time.time() - t0)
     assert estimate > budget
     tolerance = float(re.search(r"a tolerance of ([\d.e+-]+) or more fits", message).group(1))
     assert 1e-6 < tolerance < 0.05  # below a quarter of the radius, the largest tolerance the balls allow
+
+
+def test_the_slab_window_clean_check_fits_a_tight_limit_in_chunks():
+    """Issue 16, item 2 (10^9 elements within 2 GiB): the hub-overlap check of a large steady lattice held two whole
+    slabs of hubs (1.3 GB each for slabs of 10^6) and refused under a tight RLIMIT_AS; it now makes each slab's hubs
+    a chunk at a time when two slabs do not fit, and must find the same overlaps as without a limit."""
+    code = """
+import re, resource
+t = sl.Similarity.translation
+beams = [(0, 1, 0, 0, 0, 0.1, 0.1), (0, 0, 1, 0, 0, 0.1, 0.1), (0, 0, 0, 1, 0, 0.1, 0.1)]
+# balls of 0.55 at spacing 1 overlap their neighbours: every slab has overlaps to find
+L = sl.Lattice([((0, 0, 0), 0.55)], beams, (330, 330, 4), t((1, 0, 0)), t((0, 1, 0)), t((0, 0, 1)))
+free = L.hub_overlap_report(max_reports=1)
+vm = int(re.search(r"VmSize:\\s+(\\d+)", open("/proc/self/status").read()).group(1)) * 1024
+resource.setrlimit(resource.RLIMIT_AS, (vm + 200 * 2**20, resource.RLIM_INFINITY))  # two slabs need 281 MB
+r = L.hub_overlap_report(max_reports=1)
+print("result", free["verified"], free["overlap_count"], r["verified"], r["overlap_count"])
+"""
+    line = run_limited(code)
+    assert line.startswith("result"), line
+    _, free_verified, free_count, verified, count = line.split()
+    assert free_verified == "True" and verified == "True", line
+    assert int(count) == int(free_count) > 0, line
