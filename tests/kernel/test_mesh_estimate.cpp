@@ -83,7 +83,7 @@ TEST(MeshEstimate, ATinyToleranceIsRefusedBeforeAnyWork) {
     EXPECT_NE(message.find("write STL"), std::string::npos) << message;
     EXPECT_NE(message.find("3MF beam lattice"), std::string::npos) << message;
   }
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 2.0);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10.0);  // minutes before
   // A streamed STL never holds the mesh, but holds the hub templates: at 1e-9 a single one is far beyond memory.
   const std::string path = testing::TempDir() + "/tiny_tolerance_" + std::to_string(::getpid()) + ".stl";
   try {
@@ -94,7 +94,7 @@ TEST(MeshEstimate, ATinyToleranceIsRefusedBeforeAnyWork) {
     EXPECT_EQ(message.rfind("mesh: the templates of ", 0), 0u) << message;
     EXPECT_NE(message.find("use a larger tolerance"), std::string::npos) << message;
   }
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 4.0);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 20.0);
   EXPECT_FALSE(std::ifstream(path).good());  // refused before the file was opened
   // The same STL at a tolerance that fits is written.
   EXPECT_GT(write_lattice_stl(f, {0.01}, path, "lattice").triangles, 0);
