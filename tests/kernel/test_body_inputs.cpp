@@ -96,6 +96,20 @@ TEST(BodyInputs, BrepTextWithAnEdgeWithoutCurveIsRefused) {
   EXPECT_NE(message.find("no 3D curve"), std::string::npos) << message;
 }
 
+TEST(BodyInputs, BrepTextWithAnEllipseOfNoSizeIsRefusedNotAHang) {
+  // Found by fuzz_body_brep once bodies were read in a reader process: one digit of a box's text turned a line
+  // pcurve ("1 0 4 1 0") into an ellipse ("3 ..."), which took the next numbers as its axes and radii: radii 0. The
+  // text reads; OpenCASCADE's checker (BRepCheck_Wire::SelfIntersect, line against ellipse) then ran for ever (more
+  // than 146 s under ASan, in the reader process). Refused when read, naming the edge.
+  const std::string text = read_data("fuzz/brep_ellipse_pcurve_of_no_size.brep");
+  for (const std::string& message : {refusal([&] { brep_from_text(text, "body"); }),
+                                     refusal([&] { read_body_brep(text, "body"); })}) {
+    EXPECT_EQ(message.rfind("body: edge #", 0), 0u) << message;
+    EXPECT_NE(message.find("a curve on surface (pcurve) that is a circle or conic of no size"), std::string::npos)
+        << message;
+  }
+}
+
 TEST(BodyInputs, BodyWithAHugeToleranceIsRefused) {
   // Found by fuzz_body_brep: a vertex tolerance of 1 (a digit of "1e-07" changed) on a box of 4 is valid for
   // BRepCheck, and points 0.7 outside the box's corner were classified inside.
