@@ -131,6 +131,22 @@ TEST(BodyInputs, StepWithAnUnresolvedReferenceIsRefused) {
   EXPECT_EQ(read_step_parts(std::string(STEADY_TEST_DATA) + "/../../fuzz/corpus/fuzz_body_step/one_ball.step").size(), 1u);
 }
 
+TEST(BodyInputs, StepBodyThatClassifiesFarPointsInsideIsRefused) {
+  // Found by the 30-minute fuzz_body_step run: two balls and a beam with one ORIENTED_EDGE naming the wrong edge (and
+  // a few numbers changed) read as one "valid" solid of half the volume, which classified a point outside its
+  // bounding box as inside. SolidBody (every trimming's body) refuses it.
+  const std::vector<StepPart> parts = read_step_parts(std::string(STEADY_TEST_DATA) + "/fuzz/step_edge_reference_changed.step");
+  ASSERT_EQ(parts.size(), 1u);
+  const std::string message = refusal([&] { SolidBody body(parts[0].shape, "body"); });
+  EXPECT_EQ(message.rfind("body: is not a consistent solid: a point outside its bounding box is classified inside", 0), 0u)
+      << message;
+  // The file it came from is a body.
+  const std::vector<StepPart> good =
+      read_step_parts(std::string(STEADY_TEST_DATA) + "/../../fuzz/corpus/fuzz_body_step/two_balls_one_beam.step");
+  ASSERT_EQ(good.size(), 1u);
+  EXPECT_GT(SolidBody(good[0].shape, "body").volume(), 0.25);
+}
+
 // Issue 16: inputs on which OpenCASCADE's own readers crash (SIGSEGV) before the kernel gets control, found by the
 // fuzz targets (tests/fuzz/findings). They are read in a reader process of their own (brep/child_reader.hpp): the
 // crash ends that process, and the caller gets InvalidInput naming the field.
