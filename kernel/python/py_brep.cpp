@@ -249,12 +249,8 @@ void bind_brep(py::module_& m) {
   m.def(
       "brep_properties",
       [](const std::string& text) {
-        Properties p;
-        {
-          py::gil_scoped_release release;
-          p = properties(steady::brep_from_text(text, "text"));
-        }
-        return to_dict(p);
+        // Read in a reader process (the text may come from anywhere), interruptible by Ctrl-C.
+        return to_dict(run_interruptible([&] { return properties(steady::read_body_brep(text, "text")); }));
       },
       py::arg("text"), "{valid, volume, faces, solids, report} of a shape given as BREP text (OpenCASCADE's checks).");
   m.def(
@@ -263,14 +259,13 @@ void bind_brep(py::module_& m) {
         std::vector<steady::StepPart> parts;
         std::vector<Properties> props;
         std::vector<std::string> texts;
-        {
-          py::gil_scoped_release release;
+        run_interruptible([&] {
           parts = steady::read_step_parts(path);
           for (const steady::StepPart& p : parts) {
             props.push_back(properties(p.shape));
             texts.push_back(steady::brep_to_text(p.shape));
           }
-        }
+        });
         py::list out;
         for (std::size_t i = 0; i < parts.size(); ++i) {
           py::dict d = to_dict(props[i]);

@@ -286,7 +286,10 @@ keeps a ball whose node passes and a beam whose two nodes both pass.)doc")
   m.def(
       "InsideBody",
       [](py::handle body) {
-        if (py::isinstance<py::str>(body)) return PyFilter{steady::inside_brep(body.cast<std::string>(), "body")};
+        if (py::isinstance<py::str>(body)) {
+          const std::string text = body.cast<std::string>();
+          return PyFilter{run_interruptible([&] { return steady::inside_brep(text, "body"); })};
+        }
         if (py::isinstance<py::function>(body))
           return PyFilter{steady::inside(python_classifier(body.cast<py::function>()), false, "inside a Python body")};
         value_error("body", "expected B-rep text (str) or a callable points -> bools");

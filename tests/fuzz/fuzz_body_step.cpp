@@ -1,5 +1,5 @@
-// Fuzz target: a STEP file read back (read_step_parts, what steadylattice.read_step calls), and each part it gives
-// taken as a body (SolidBody) and checked as in fuzz_body_brep. Any bytes either read or are refused with
+// Fuzz target: a STEP file read back (read_step_parts, what steadylattice.read_step calls: the reader runs in a
+// process of its own), and each part it gives taken as a body (SolidBody) and checked as in fuzz_body_brep. Any bytes either read or are refused with
 // InvalidInput.
 #include <Message.hxx>
 #include <Message_Messenger.hxx>

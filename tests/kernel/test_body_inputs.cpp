@@ -13,11 +13,16 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
+
+#include <unistd.h>
 
 #include "steady/brep/brep_io.hpp"
 #include "steady/brep/solid_body.hpp"
 #include "steady/brep/step_assembly.hpp"
+#include "steady/brep/body_filter.hpp"
 #include "steady/core/errors.hpp"
+#include "steady/core/progress.hpp"
 
 namespace steady {
 namespace {
@@ -91,6 +96,20 @@ TEST(BodyInputs, BrepTextWithAnEdgeWithoutCurveIsRefused) {
   EXPECT_NE(message.find("no 3D curve"), std::string::npos) << message;
 }
 
+TEST(BodyInputs, BrepTextWithAnEllipseOfNoSizeIsRefusedNotAHang) {
+  // Found by fuzz_body_brep once bodies were read in a reader process: one digit of a box's text turned a line
+  // pcurve ("1 0 4 1 0") into an ellipse ("3 ..."), which took the next numbers as its axes and radii: radii 0. The
+  // text reads; OpenCASCADE's checker (BRepCheck_Wire::SelfIntersect, line against ellipse) then ran for ever (more
+  // than 146 s under ASan, in the reader process). Refused when read, naming the edge.
+  const std::string text = read_data("fuzz/brep_ellipse_pcurve_of_no_size.brep");
+  for (const std::string& message : {refusal([&] { brep_from_text(text, "body"); }),
+                                     refusal([&] { read_body_brep(text, "body"); })}) {
+    EXPECT_EQ(message.rfind("body: edge #", 0), 0u) << message;
+    EXPECT_NE(message.find("a curve on surface (pcurve) that is a circle or conic of no size"), std::string::npos)
+        << message;
+  }
+}
+
 TEST(BodyInputs, BodyWithAHugeToleranceIsRefused) {
   // Found by fuzz_body_brep: a vertex tolerance of 1 (a digit of "1e-07" changed) on a box of 4 is valid for
   // BRepCheck, and points 0.7 outside the box's corner were classified inside.
@@ -110,6 +129,98 @@ TEST(BodyInputs, StepWithAnUnresolvedReferenceIsRefused) {
   EXPECT_EQ(message.rfind("path: ", 0), 0u) << message;
   // A file the kernel wrote still reads.
   EXPECT_EQ(read_step_parts(std::string(STEADY_TEST_DATA) + "/../../fuzz/corpus/fuzz_body_step/one_ball.step").size(), 1u);
+}
+
+TEST(BodyInputs, StepBodyThatClassifiesFarPointsInsideIsRefused) {
+  // Found by the 30-minute fuzz_body_step run: two balls and a beam with one ORIENTED_EDGE naming the wrong edge (and
+  // a few numbers changed) read as one "valid" solid of half the volume, which classified a point outside its
+  // bounding box as inside. SolidBody (every trimming's body) refuses it.
+  const std::vector<StepPart> parts = read_step_parts(std::string(STEADY_TEST_DATA) + "/fuzz/step_edge_reference_changed.step");
+  ASSERT_EQ(parts.size(), 1u);
+  const std::string message = refusal([&] { SolidBody body(parts[0].shape, "body"); });
+  EXPECT_EQ(message.rfind("body: is not a consistent solid: a point outside its bounding box is classified inside", 0), 0u)
+      << message;
+  // The file it came from is a body.
+  const std::vector<StepPart> good =
+      read_step_parts(std::string(STEADY_TEST_DATA) + "/../../fuzz/corpus/fuzz_body_step/two_balls_one_beam.step");
+  ASSERT_EQ(good.size(), 1u);
+  EXPECT_GT(SolidBody(good[0].shape, "body").volume(), 0.25);
+}
+
+// Issue 16: inputs on which OpenCASCADE's own readers crash (SIGSEGV) before the kernel gets control, found by the
+// fuzz targets (tests/fuzz/findings). They are read in a reader process of their own (brep/child_reader.hpp): the
+// crash ends that process, and the caller gets InvalidInput naming the field.
+std::string finding(const std::string& name) { return std::string(STEADY_TEST_DATA) + "/../../fuzz/findings/" + name; }
+
+TEST(BodyInputs, BrepTextThatCrashesTheReaderIsRefusedNotACrash) {
+  // SEGV in Geom2d_OffsetCurve::SetBasisCurve: a 2D offset curve whose basis curve does not read.
+  const std::string text = read_data("../../fuzz/findings/brep_offset_curve_without_basis.brep");
+  for (const std::string& message : {refusal([&] { read_body_brep(text, "body"); }),
+                                     refusal([&] { inside_brep(text, "body"); })}) {
+    EXPECT_EQ(message.rfind("body: the BREP text crashed OpenCASCADE's BREP reader (", 0), 0u) << message;
+    EXPECT_NE(message.find("it is corrupt"), std::string::npos) << message;
+  }
+}
+
+TEST(BodyInputs, StepThatCrashesTheReaderIsRefusedNotACrash) {
+  // SEGV in StepShape_EdgeLoop::EdgeListValue, inside OpenCASCADE's own semantic check in ReadFile.
+  const std::string path = finding("step_edge_loop_check.step");
+  const std::string message = refusal([&] { read_step_parts(path); });
+  EXPECT_EQ(message.rfind("path: '" + path + "' crashed OpenCASCADE's STEP reader (", 0), 0u) << message;
+}
+
+// BREP text with every shape's "checked" flag cleared (the third of its seven flags): BinTools does not carry it,
+// and it is only a mark that BRepCheck has looked at the shape.
+std::string without_checked_flags(std::string text) {
+  std::istringstream in(text);
+  std::string line, out;
+  while (std::getline(in, line)) {
+    if (line.size() == 7 && line.find_first_not_of("01") == std::string::npos) line[2] = '0';
+    out += line + "\n";
+  }
+  return out;
+}
+
+TEST(BodyInputs, TheReaderProcessGivesBackTheShapeItRead) {
+  // What comes back from the reader process (BinTools binary) is the shape as read in this process, every number
+  // and every sub-shape.
+  const std::string text = read_data("../../fuzz/corpus/fuzz_body_brep/cylinder.brep");
+  EXPECT_EQ(without_checked_flags(brep_to_text(read_body_brep(text, "body"))),
+            without_checked_flags(brep_to_text(brep_from_text(text, "body"))));
+  // A STEP file the kernel wrote: its part's volume, name and colour as written.
+  const std::string path = testing::TempDir() + "/reader_process_box_" + std::to_string(getpid()) + ".step";
+  write_step_assembly(path, {{"Box", BRepPrimAPI_MakeBox(4, 5, 6).Shape(), {0.25, 0.5, 0.75}, true}});
+  const std::vector<StepPart> parts = read_step_parts(path);
+  std::remove(path.c_str());
+  ASSERT_EQ(parts.size(), 1u);
+  EXPECT_EQ(parts[0].name, "Box");
+  EXPECT_TRUE(parts[0].has_color);
+  EXPECT_NEAR(parts[0].color[1], 0.5, 1e-6);
+  EXPECT_NEAR(shape_volume(parts[0].shape), 120.0, 1e-9);
+  // A refusal made in the reader process comes back with its message.
+  EXPECT_NE(refusal([] { read_body_brep("not a shape", "body"); }).find("body: "), std::string::npos);
+  EXPECT_EQ(refusal([&] { inside_brep(brep_to_text(BRepPrimAPI_MakeBox(1, 1, 1).TopFace()), "body"); }),
+            "body: is not a solid (the shape holds no solid)");
+}
+
+// BREP text that OpenCASCADE's reader takes many seconds over: millions of line records, and no shape after them.
+std::string slow_brep_text(int curves) {
+  std::string text = "\nCASCADE Topology V1, (c) Matra-Datavision\nLocations 0\nCurve2ds 0\nCurves " +
+                     std::to_string(curves) + "\n";
+  for (int i = 0; i < curves; ++i) text += "1 0 0 0 1 0 0 \n";
+  return text;
+}
+
+TEST(BodyInputs, ACancelStopsTheReaderProcessWithinASecond) {
+  const std::string text = slow_brep_text(3000000);  // about 3 s to read here
+  const auto start = std::chrono::steady_clock::now();
+  const auto cancel_at = start + std::chrono::milliseconds(300);
+  Progress progress([&](double) { return std::chrono::steady_clock::now() < cancel_at; });
+  progress.set_report_interval(std::chrono::milliseconds(0));
+  const ProgressScope scope(&progress);
+  EXPECT_THROW(read_body_brep(text, "body"), Cancelled);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_LT(seconds, 1.3);  // 0.3 s before the cancel, then a poll of 50 ms and the kill
 }
 
 }  // namespace

@@ -7,6 +7,8 @@
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepTools.hxx>
+#include <BRep_Builder.hxx>
+#include <TopoDS_Compound.hxx>
 #include <gp_Pln.hxx>
 
 #include <algorithm>
@@ -189,6 +191,39 @@ TEST(Filters, InsideBodyCallableAndBrep) {
   for (std::size_t x = 0; x < both.size(); ++x) {
     EXPECT_EQ(both[x], a[x] && !in_box[x]);
     EXPECT_EQ(either[x], a[x] || in_box[x]);
+  }
+}
+
+TEST(Filters, InsideABodyOfSeveralSolidsIsTheirUnion) {
+  // Issue 16: a compound of two overlapping boxes keeps a node inside either (not only the first, not an exclusive
+  // or): the same nodes as any_of the two boxes as separate bodies. A face beside the solids is refused.
+  const Lattice lat = test::regular_bcc({6, 6, 6});
+  const TopoDS_Shape a = BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 0), gp_Pnt(3, 3, 3)).Shape();
+  const TopoDS_Shape b = BRepPrimAPI_MakeBox(gp_Pnt(2, 2, 2), gp_Pnt(5, 5, 5)).Shape();
+  TopoDS_Compound both;
+  BRep_Builder builder;
+  builder.MakeCompound(both);
+  builder.Add(both, a);
+  builder.Add(both, b);
+  const auto united = balls_of(FilteredLattice(lat, inside_brep(brep_text(both))));
+  const auto in_a = balls_of(FilteredLattice(lat, inside_brep(brep_text(a))));
+  const auto in_b = balls_of(FilteredLattice(lat, inside_brep(brep_text(b))));
+  long only_a = 0, only_b = 0, kept = 0;
+  for (std::size_t x = 0; x < united.size(); ++x) {
+    EXPECT_EQ(united[x], in_a[x] || in_b[x]) << x;
+    only_a += in_a[x] && !in_b[x];
+    only_b += in_b[x] && !in_a[x];
+    kept += united[x];
+  }
+  EXPECT_GT(only_a, 0);
+  EXPECT_GT(only_b, 0);
+  EXPECT_GT(kept, only_a + only_b);  // some nodes are in both
+  builder.Add(both, BRepBuilderAPI_MakeFace(gp_Pln(gp_Pnt(10, 10, 10), gp_Dir(0, 0, 1)), 0, 1, 0, 1).Face());
+  try {
+    inside_brep(brep_text(both));
+    ADD_FAILURE() << "a face beside the solids was accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("body: holds 1 faces outside its solids", 0), 0u) << e.what();
   }
 }
 

@@ -24,6 +24,9 @@ def bent(n):
     U = sl.Similarity.swirl(0.0005, (0, 0, 1), (0, -2000, 0), 1.0001)
     W = sl.Similarity.screw(0.0002, (0, 0, 1), (0, 0, 0), 1.0)
     return sl.Lattice([((0, 0, 0), 0.2)], [(0, 1, 0, 0, 0), (0, 0, 1, 0, 0), (0, 0, 0, 1, 0)], n, U, t((0, 1, 0)), W)
+def slow_brep(curves):  # BREP text OpenCASCADE's reader takes about a second per million line records over
+    return "\\nCASCADE Topology V1, (c) Matra-Datavision\\nLocations 0\\nCurve2ds 0\\nCurves %d\\n" % curves + \
+        "1 0 0 0 1 0 0 \\n" * curves
 """
 
 # (name, setup, the long call): one call each (Python itself stops between calls), every one of them minutes long
@@ -53,12 +56,18 @@ CALLS = [
     # listings are bounded by the memory budget, so seconds, not minutes (13 s and 15 s here): see STOP_LISTING
     ("balls", "L = cubic((450, 450, 450))", "L.balls()"),
     ("beams", "L = cubic((300, 300, 300))", "L.beams()"),
+    # a body's reader (OpenCASCADE's, in a reader process of its own): 6 s uninterrupted here, see STOP_READER
+    ("read_body", "text = slow_brep(6000000)", "sl.brep_properties(text)"),
+    ("read_body_filter", "text = slow_brep(6000000)", "sl.InsideBody(text)"),
 ]
 # After SIGINT the child must be gone within this long: a few polls of 0.1 s, with ample room for a loaded machine.
 STOP_SECONDS = 30
 # The listings end by themselves some 10 s after the signal; a poll stops them within a fraction of a second
 # (0.2 s measured), so a listing still running 5 s after the signal did not poll.
 STOP_LISTING = {"balls": 5, "beams": 5}
+# The readers of bodies run in a process of their own that is killed on a cancel (polled every 50 ms): the
+# issue asks for Ctrl-C to land within a second.
+STOP_LISTING.update({"read_body": 1, "read_body_filter": 1})
 
 @pytest.mark.parametrize("name,setup,call", CALLS, ids=[c[0] for c in CALLS])
 def test_a_long_call_stops_on_sigint(name, setup, call):

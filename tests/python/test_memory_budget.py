@@ -110,3 +110,51 @@ def test_materialize_of_ten_billion_balls_is_refused_up_front():
 def test_without_a_limit_the_budget_is_the_machines():
     message = run_limited("report(lambda: cubic((1000, 1000, 1000)).query_ball((500, 500, 500), 2000.0))")
     assert "this machine has available" in message
+
+
+def test_a_mesh_with_a_tiny_tolerance_is_refused_before_work_under_rlimit_as():
+    """Issue 16, item 2: to_mesh, write_obj and write_3mf hold the whole mesh; at 1e-6 on balls of 0.2 the mesh of
+    30^3 cells is far beyond 2 GiB. Refused at once, from the estimate, naming RLIMIT_AS and a tolerance that fits;
+    a streamed STL holds only the templates and is refused only when those cannot fit."""
+    code = """
+import time
+L = cubic((30, 30, 30))
+t0 = time.time()
+report(lambda: L.to_mesh(1e-6))
+print("seconds", time.time() - t0)
+"""
+    lines = subprocess.run([sys.executable, "-c", PRELUDE + code], capture_output=True, text=True, timeout=900,
+                           preexec_fn=lambda: resource.setrlimit(resource.RLIMIT_AS, (2 * GIB, 2 * GIB))).stdout
+    message, seconds = lines.strip().splitlines()[-2:]
+    assert message.startswith("MemoryError: mesh: about "), message
+    assert "triangles (estimated from the tolerance 1e-06 and the balls' radii, before any is made)" in message
+    assert "RLIMIT_AS" in message and "a tolerance of " in message and "or more fits" in message, message
+    assert "write STL (streamed" in message and "write_3mf(beam_lattice=True)" in message, message
+    assert float(seconds.split()[1]) < 5.0
+    estimate, budget, _ = figures(message)
+    assert estimate > budget
+    tolerance = float(re.search(r"a tolerance of ([\d.e+-]+) or more fits", message).group(1))
+    assert 1e-6 < tolerance < 0.05  # below a quarter of the radius, the largest tolerance the balls allow
+
+
+def test_the_slab_window_clean_check_fits_a_tight_limit_in_chunks():
+    """Issue 16, item 2 (10^9 elements within 2 GiB): the hub-overlap check of a large steady lattice held two whole
+    slabs of hubs (1.3 GB each for slabs of 10^6) and refused under a tight RLIMIT_AS; it now makes each slab's hubs
+    a chunk at a time when two slabs do not fit, and must find the same overlaps as without a limit."""
+    code = """
+import re, resource
+t = sl.Similarity.translation
+beams = [(0, 1, 0, 0, 0, 0.1, 0.1), (0, 0, 1, 0, 0, 0.1, 0.1), (0, 0, 0, 1, 0, 0.1, 0.1)]
+# balls of 0.55 at spacing 1 overlap their neighbours: every slab has overlaps to find
+L = sl.Lattice([((0, 0, 0), 0.55)], beams, (330, 330, 4), t((1, 0, 0)), t((0, 1, 0)), t((0, 0, 1)))
+free = L.hub_overlap_report(max_reports=1)
+vm = int(re.search(r"VmSize:\\s+(\\d+)", open("/proc/self/status").read()).group(1)) * 1024
+resource.setrlimit(resource.RLIMIT_AS, (vm + 200 * 2**20, resource.RLIM_INFINITY))  # two slabs need 281 MB
+r = L.hub_overlap_report(max_reports=1)
+print("result", free["verified"], free["overlap_count"], r["verified"], r["overlap_count"])
+"""
+    line = run_limited(code)
+    assert line.startswith("result"), line
+    _, free_verified, free_count, verified, count = line.split()
+    assert free_verified == "True" and verified == "True", line
+    assert int(count) == int(free_count) > 0, line

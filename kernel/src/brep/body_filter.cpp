@@ -3,20 +3,19 @@
 
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepClass3d_SolidClassifier.hxx>
-#include <BRepTools.hxx>
-#include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <Precision.hxx>
-#include <Standard_Failure.hxx>
+#include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Shape.hxx>
 #include <TopoDS_Solid.hxx>
 #include <tbb/enumerable_thread_specific.h>
 
 #include <memory>
-#include <sstream>
 
+#include "steady/brep/brep_io.hpp"
 #include "steady/core/errors.hpp"
 
 namespace steady {
@@ -54,22 +53,24 @@ class InsideBrep : public NodeFilter {
 }  // namespace
 
 FilterPtr inside_brep(const std::string& brep_text, const std::string& field) {
-  TopoDS_Shape shape;
-  try {
-    std::istringstream in(brep_text);
-    BRep_Builder builder;
-    BRepTools::Read(shape, in, builder);
-  } catch (const Standard_Failure& e) {
-    fail_input(field, std::string("is not readable B-rep text: ") + e.GetMessageString());
-  }
-  if (shape.IsNull()) fail_input(field, "is not readable B-rep text (OpenCASCADE read nothing)");
+  const TopoDS_Shape shape = read_body_brep(brep_text, field, [&](const TopoDS_Shape& read) {
+    if (!TopExp_Explorer(read, TopAbs_SOLID).More()) fail_input(field, "is not a solid (the shape holds no solid)");
+    // Several solids are their union (a node inside any is kept). A face outside every solid (a loose face or open
+    // shell beside them) bounds no volume, and would be ignored without a word: refused.
+    TopTools_IndexedMapOfShape faces, solid_faces;
+    TopExp::MapShapes(read, TopAbs_FACE, faces);
+    for (TopExp_Explorer x(read, TopAbs_SOLID); x.More(); x.Next()) TopExp::MapShapes(x.Current(), TopAbs_FACE, solid_faces);
+    if (faces.Extent() > solid_faces.Extent())
+      fail_input(field, "holds " + std::to_string(faces.Extent() - solid_faces.Extent()) +
+                            " faces outside its solids (a loose face or open shell bounds no volume): give solids only");
+    if (!BRepCheck_Analyzer(read, Standard_True, Standard_False).IsValid())
+      fail_input(field, "is not a valid solid (BRepCheck_Analyzer)");
+    for (TopExp_Explorer s(read, TopAbs_SOLID); s.More(); s.Next())
+      for (TopExp_Explorer x(s.Current(), TopAbs_SHELL); x.More(); x.Next())
+        if (!BRep_Tool::IsClosed(x.Current())) fail_input(field, "is not a closed solid (a shell is open)");
+  });
   std::vector<TopoDS_Solid> solids;
   for (TopExp_Explorer x(shape, TopAbs_SOLID); x.More(); x.Next()) solids.push_back(TopoDS::Solid(x.Current()));
-  if (solids.empty()) fail_input(field, "is not a solid (the shape holds no solid)");
-  if (!BRepCheck_Analyzer(shape).IsValid()) fail_input(field, "is not a valid solid (BRepCheck_Analyzer)");
-  for (const TopoDS_Solid& s : solids)
-    for (TopExp_Explorer x(s, TopAbs_SHELL); x.More(); x.Next())
-      if (!BRep_Tool::IsClosed(x.Current())) fail_input(field, "is not a closed solid (a shell is open)");
   return std::make_shared<InsideBrep>(std::move(solids));
 }
 

@@ -19,6 +19,19 @@
 #include <BRep_TFace.hxx>
 #include <BRep_TVertex.hxx>
 #include <GProp_GProps.hxx>
+#include <Geom2d_Circle.hxx>
+#include <Geom2d_Ellipse.hxx>
+#include <Geom2d_Hyperbola.hxx>
+#include <Geom2d_OffsetCurve.hxx>
+#include <Geom2d_Parabola.hxx>
+#include <Geom2d_TrimmedCurve.hxx>
+#include <Geom_Circle.hxx>
+#include <Geom_Ellipse.hxx>
+#include <Geom_Hyperbola.hxx>
+#include <Geom_OffsetCurve.hxx>
+#include <Geom_Parabola.hxx>
+#include <Geom_TrimmedCurve.hxx>
+#include <Precision.hxx>
 #include <TopExp.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 
@@ -26,6 +39,7 @@
 #include <ios>
 #include <sstream>
 
+#include "brep/child_reader.hpp"
 #include "brep/occ_progress.hpp"
 #include "steady/core/errors.hpp"
 
@@ -62,9 +76,67 @@ TopoDS_Shape brep_from_text(const std::string& text, const std::string& field) {
   return shape;
 }
 
+TopoDS_Shape read_body_brep(const std::string& text, const std::string& field,
+                            const std::function<void(const TopoDS_Shape&)>& check) {
+  const std::string binary = run_in_child(
+      [&] {
+        const TopoDS_Shape shape = brep_from_text(text, field);
+        // Every caller checks the body next (validity, trimming), and the checker has crashed on shapes the reader
+        // left incomplete (docs/reliability.md): it runs here first, where a crash is an error (sequential: the
+        // child has no TBB workers).
+        BRepCheck_Analyzer(shape, Standard_True, Standard_False).IsValid();
+        if (check) check(shape);
+        return shape_to_binary(shape);
+      },
+      field, "the BREP text", "BREP reader");
+  return shape_from_binary(binary);
+}
+
 namespace {
 
 bool finite(const gp_Pnt& p) { return std::isfinite(p.X()) && std::isfinite(p.Y()) && std::isfinite(p.Z()); }
+
+// The size of a conic (a circle's radius, an ellipse's or hyperbola's minor radius, a parabola's focal length),
+// through trimmed and offset curves; +inf for other curves. The readers take any numbers, and OpenCASCADE's
+// intersections loop on a conic of no size: BRepCheck's wire self-intersection test ran for ever on an ellipse
+// pcurve of radii 0 (found by fuzz_body_brep).
+double conic_size(Handle(Geom2d_Curve) c) {
+  for (int depth = 0; depth < 64 && !c.IsNull(); ++depth) {
+    if (const Handle(Geom2d_TrimmedCurve) t = Handle(Geom2d_TrimmedCurve)::DownCast(c); !t.IsNull()) {
+      c = t->BasisCurve();
+    } else if (const Handle(Geom2d_OffsetCurve) o = Handle(Geom2d_OffsetCurve)::DownCast(c); !o.IsNull()) {
+      c = o->BasisCurve();
+    } else {
+      break;
+    }
+  }
+  if (const Handle(Geom2d_Circle) k = Handle(Geom2d_Circle)::DownCast(c); !k.IsNull()) return k->Radius();
+  if (const Handle(Geom2d_Ellipse) k = Handle(Geom2d_Ellipse)::DownCast(c); !k.IsNull()) return k->MinorRadius();
+  if (const Handle(Geom2d_Hyperbola) k = Handle(Geom2d_Hyperbola)::DownCast(c); !k.IsNull()) return k->MinorRadius();
+  if (const Handle(Geom2d_Parabola) k = Handle(Geom2d_Parabola)::DownCast(c); !k.IsNull()) return k->Focal();
+  return INFINITY;
+}
+
+double conic_size(Handle(Geom_Curve) c) {
+  for (int depth = 0; depth < 64 && !c.IsNull(); ++depth) {
+    if (const Handle(Geom_TrimmedCurve) t = Handle(Geom_TrimmedCurve)::DownCast(c); !t.IsNull()) {
+      c = t->BasisCurve();
+    } else if (const Handle(Geom_OffsetCurve) o = Handle(Geom_OffsetCurve)::DownCast(c); !o.IsNull()) {
+      c = o->BasisCurve();
+    } else {
+      break;
+    }
+  }
+  if (const Handle(Geom_Circle) k = Handle(Geom_Circle)::DownCast(c); !k.IsNull()) return k->Radius();
+  if (const Handle(Geom_Ellipse) k = Handle(Geom_Ellipse)::DownCast(c); !k.IsNull()) return k->MinorRadius();
+  if (const Handle(Geom_Hyperbola) k = Handle(Geom_Hyperbola)::DownCast(c); !k.IsNull()) return k->MinorRadius();
+  if (const Handle(Geom_Parabola) k = Handle(Geom_Parabola)::DownCast(c); !k.IsNull()) return k->Focal();
+  return INFINITY;
+}
+
+// A conic smaller than the resolution of its space (parameters for a pcurve, model units for a 3D curve) cannot
+// carry an edge; NaN sizes count as none.
+bool no_size(double size, double resolution) { return !(size > resolution); }
 
 // What is wrong with one of an edge's representations (nullptr when nothing): each must hold the curves, surfaces
 // and polygons it names (a record naming a curve or surface that did not read holds a null one).
@@ -74,7 +146,12 @@ const char* broken_representation(const Handle(BRep_CurveRepresentation)& r) {
     if (r->Surface().IsNull()) return "a curve on a surface that did not read";
     if (r->PCurve().IsNull() || (r->IsCurveOnClosedSurface() && r->PCurve2().IsNull()))
       return "a curve on surface (pcurve) that did not read";
+    if (no_size(conic_size(r->PCurve()), Precision::PConfusion()) ||
+        (r->IsCurveOnClosedSurface() && no_size(conic_size(r->PCurve2()), Precision::PConfusion())))
+      return "a curve on surface (pcurve) that is a circle or conic of no size";
   }
+  if (r->IsCurve3D() && !r->Curve3D().IsNull() && no_size(conic_size(r->Curve3D()), Precision::Confusion()))
+    return "a 3D curve that is a circle or conic of no size";
   if (r->IsRegularity() && (r->Surface().IsNull() || r->Surface2().IsNull())) return "a continuity between surfaces that did not read";
   if (r->IsPolygon3D() && r->Polygon3D().IsNull()) return "a 3D polygon that did not read";
   if (r->IsPolygonOnTriangulation() && (r->PolygonOnTriangulation().IsNull() || r->Triangulation().IsNull()))

@@ -20,7 +20,12 @@ TrimResult make_part(const FlatLattice& lattice, const LatticePartRequest& reque
     out.stats.fused_cores = built.stats.fused_cores;
     return out;
   }
-  return trim_lattice(lattice, brep_from_text(*request.body_brep, "body"), request.trim, progress);
+  TopoDS_Shape body;
+  {
+    const ProgressScope scope(&progress);  // the reader process is killed when the part is cancelled
+    body = read_body_brep(*request.body_brep, "body");
+  }
+  return trim_lattice(lattice, body, request.trim, progress);
 }
 
 // Shares of the output's progress: the part, then its BREP text (quick) or its STEP file (translating and writing

@@ -119,6 +119,17 @@ SolidBody::SolidBody(const TopoDS_Shape& shape, const std::string& field) {
   tree_->tree.insert(tree_->triangles.cbegin(), tree_->triangles.cend());
   tree_->tree.build();
   tree_->tree.accelerate_distance_queries();
+  // Points well outside the bounding box must be outside. A shell whose wires name the wrong edges can pass
+  // BRepCheck and still classify such points inside (found by fuzz_body_step: one edge reference changed, volume
+  // halved, "valid"); trimming against it would keep nodes far from the body.
+  const Vec3 mid = 0.5 * (bounds_.lo + bounds_.hi), half = 0.5 * (bounds_.hi - bounds_.lo) + Vec3(0.1 * size());
+  for (int corner = 0; corner < 8; ++corner) {
+    const Vec3 p = mid + Vec3(corner & 1 ? 1.0 : -1.0, corner & 2 ? 1.0 : -1.0, corner & 4 ? 1.0 : -1.0) * half;
+    if (contains(p))
+      fail_input(field, "is not a consistent solid: a point outside its bounding box is classified inside (its faces' "
+                        "wires or orientations contradict each other; repair the shape, e.g. FreeCAD's Part > Check "
+                        "geometry)");
+  }
 }
 
 SolidBody::~SolidBody() = default;

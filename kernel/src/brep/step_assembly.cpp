@@ -27,10 +27,15 @@
 #include <XCAFDoc_DocumentTool.hxx>
 #include <XCAFDoc_ShapeTool.hxx>
 
+#include <BRepCheck_Analyzer.hxx>
+
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <mutex>
 #include <sstream>
 
+#include "brep/child_reader.hpp"
 #include "brep/occ_progress.hpp"
 #include "steady/core/errors.hpp"
 
@@ -183,8 +188,10 @@ void write_step_assembly(const std::string& path, const std::vector<StepPart>& p
   progress.finish();
 }
 
-std::vector<StepPart> read_step_parts(const std::string& path) {
-  std::lock_guard<std::mutex> lock(xcaf_mutex());
+namespace {
+
+// Reads the file in this process (the reader process's work): the caller holds xcaf_mutex.
+std::vector<StepPart> read_step_here(const std::string& path) {
   Handle(TDocStd_Document) doc = new_document();
   STEPCAFControl_Reader reader;
   reader.SetColorMode(Standard_True);
@@ -217,8 +224,85 @@ std::vector<StepPart> read_step_parts(const std::string& path) {
   std::vector<StepPart> out;
   for (int i = 1; i <= roots.Length(); ++i) collect(shapes, colors, roots.Value(i), TopLoc_Location(), "", out);
   XCAFApp_Application::GetApplication()->Close(doc);
-  for (const StepPart& part : out) require_complete_geometry(part.shape, "path");
+  for (const StepPart& part : out) {
+    require_complete_geometry(part.shape, "path");
+    // The checker, which every caller runs next, has crashed on shapes a reader left incomplete: run it here
+    // first, where a crash is an error (sequential: the reader process has no TBB workers).
+    BRepCheck_Analyzer(part.shape, Standard_True, Standard_False).IsValid();
+  }
   return out;
+}
+
+// The parts as the reader process sends them: per part its name, colour and shape (BinTools binary).
+void put(std::string& out, const void* data, std::size_t size) { out.append(static_cast<const char*>(data), size); }
+void put_string(std::string& out, const std::string& s) {
+  const std::uint64_t n = s.size();
+  put(out, &n, sizeof n);
+  out += s;
+}
+
+std::string parts_to_bytes(const std::vector<StepPart>& parts) {
+  std::string out;
+  const std::uint64_t n = parts.size();
+  put(out, &n, sizeof n);
+  for (const StepPart& p : parts) {
+    put_string(out, p.name);
+    const char has_color = p.has_color ? 1 : 0;
+    put(out, &has_color, 1);
+    put(out, p.color.data(), sizeof p.color);
+    put_string(out, shape_to_binary(p.shape));
+  }
+  return out;
+}
+
+// Reads what parts_to_bytes wrote (in the same program, so the same layout).
+class PartReader {
+ public:
+  explicit PartReader(const std::string& bytes) : bytes_(bytes) {}
+  void get(void* data, std::size_t size) {
+    if (size > bytes_.size() - at_) throw std::runtime_error("the STEP reader process sent a truncated answer");
+    std::memcpy(data, bytes_.data() + at_, size);
+    at_ += size;
+  }
+  std::string get_string() {
+    std::uint64_t n = 0;
+    get(&n, sizeof n);
+    if (n > bytes_.size() - at_) throw std::runtime_error("the STEP reader process sent a truncated answer");
+    std::string s = bytes_.substr(at_, n);
+    at_ += n;
+    return s;
+  }
+
+ private:
+  const std::string& bytes_;
+  std::size_t at_ = 0;
+};
+
+std::vector<StepPart> parts_from_bytes(const std::string& bytes) {
+  PartReader in(bytes);
+  std::uint64_t n = 0;
+  in.get(&n, sizeof n);
+  std::vector<StepPart> parts;
+  for (std::uint64_t i = 0; i < n; ++i) {
+    StepPart p;
+    p.name = in.get_string();
+    char has_color = 0;
+    in.get(&has_color, 1);
+    p.has_color = has_color != 0;
+    in.get(p.color.data(), sizeof p.color);
+    p.shape = shape_from_binary(in.get_string());
+    parts.push_back(std::move(p));
+  }
+  return parts;
+}
+
+}  // namespace
+
+std::vector<StepPart> read_step_parts(const std::string& path) {
+  // Held around the fork: the reader process inherits it held by its only thread, and reads without taking it.
+  std::lock_guard<std::mutex> lock(xcaf_mutex());
+  return parts_from_bytes(
+      run_in_child([&] { return parts_to_bytes(read_step_here(path)); }, "path", "'" + path + "'", "STEP reader"));
 }
 
 }  // namespace steady

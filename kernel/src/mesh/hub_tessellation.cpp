@@ -33,8 +33,12 @@ using Mesh = CGAL::Surface_mesh<Point>;
 double point_spacing(double tolerance) { return std::min(0.5, 0.8 * std::sqrt(6.0 * tolerance)); }
 
 // Points spread evenly over the unit sphere (Fibonacci spiral) at the given spacing (area sqrt(3)/2 s^2 each).
+int sphere_points_at(double spacing) {
+  return std::max(12, static_cast<int>(std::ceil(8.0 * M_PI / (std::sqrt(3.0) * spacing * spacing))));
+}
+
 std::vector<Vec3> sphere_points(double spacing) {
-  const int n = std::max(12, static_cast<int>(std::ceil(8.0 * M_PI / (std::sqrt(3.0) * spacing * spacing))));
+  const int n = sphere_points_at(spacing);
   const double golden_angle = M_PI * (3.0 - std::sqrt(5.0));
   std::vector<Vec3> points(n);
   for (int i = 0; i < n; ++i) {
@@ -380,6 +384,11 @@ int tolerance_level(double relative_tolerance) {
 }
 
 double level_tolerance(int level) { return std::exp2(-0.5 * level); }
+
+double sphere_point_count(double tolerance) {
+  const double spacing = point_spacing(tolerance);
+  return 8.0 * M_PI / (std::sqrt(3.0) * spacing * spacing);  // as sphere_points_at, in double: no overflow
+}
 
 int circle_segments(double radius, double tolerance) {
   int n = 6;

@@ -39,6 +39,10 @@ struct HubTemplate {
 int tolerance_level(double relative_tolerance);
 double level_tolerance(int level);
 
+// How many points a whole unit sphere's template spreads at relative tolerance `tolerance` (a hub's template has
+// at most these, less its holes, plus its circles): for estimates made before any template (mesh_estimate.cpp).
+double sphere_point_count(double tolerance);
+
 // Segments of a circle of radius `radius` (unit-ball units) at relative tolerance `tolerance`: the chord error
 // radius (1 - cos(pi / n)) within the tolerance, and edges no longer than the sphere's point spacing.
 int circle_segments(double radius, double tolerance);

@@ -13,6 +13,10 @@ namespace steady {
 TriangleMesh lattice_mesh(const FlatLattice& f, const MeshOptions& options, LatticeMeshStats* stats_out,
                           Progress& progress) {
   progress.set_total(100);
+  {
+    const ProgressScope scope(&progress);
+    require_mesh_memory(f, options.tolerance, "mesh");  // before the templates, which take long at a tiny tolerance
+  }
   MeshPlan plan;
   {
     Progress part(progress, 60);

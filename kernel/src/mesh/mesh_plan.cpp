@@ -136,6 +136,16 @@ MeshPlan plan_lattice_mesh(const FlatLattice& f, const MeshOptions& options, Pro
     for (std::size_t h = 0; h < plan.hubs.size(); ++h)
       if (hubs_needed[h]) built[plan.hubs[h].templ] = 1;
   }
+  // The templates' memory before any is made: even a streamed STL holds them, and a tolerance far below the radii
+  // makes a single template gigabytes and many minutes of work.
+  double template_points = 0.0;
+  for (std::size_t t = 0; t < keys.size(); ++t)
+    if (built[t]) template_points += template_point_bound(level_tolerance(keys[t].second), catalog.shapes[keys[t].first].size());
+  require_memory(static_cast<std::uint64_t>(std::min(template_points * kBytesPerTemplatePoint, 1.8e19)),
+                 "mesh: the templates of " + std::to_string(std::count(built.begin(), built.end(), 1)) +
+                     " distinct hubs (about " + g(template_points) + " points, tessellated once each)",
+                 "use a larger tolerance (the points of a hub grow as radius / tolerance), or write a 3MF beam lattice "
+                 "(write_3mf(beam_lattice=True))");
   const auto t0 = std::chrono::steady_clock::now();
   plan.templates.resize(keys.size());
   {

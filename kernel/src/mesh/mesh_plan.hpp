@@ -41,6 +41,13 @@ struct MeshPlan {
   LatticeMeshStats stats;
 };
 
+// At most how many points the template of a hub with `stumps` beams has at relative tolerance `tau`, counting a
+// crowded hub's collar circles (mesh_estimate.cpp).
+double template_point_bound(double tau, std::size_t stumps);
+// What building a template costs per point at its peak, while CGAL triangulates it: 810 to 840 bytes measured
+// (one template of 0.48 and 1.37 million points, ru_maxrss), rounded up.
+constexpr double kBytesPerTemplatePoint = 1024.0;
+
 // Which hubs will be placed (or hold a loop of a strip that will), given the plan's hubs, frustums and ends before
 // any template exists: one char per hub. A trimmed mesh needs no template for the hubs it drops.
 using HubsNeeded = std::function<std::vector<char>(const MeshPlan&)>;

@@ -234,6 +234,9 @@ std::vector<HubPieces> pieces_of(const Lattice& lattice, const std::vector<NodeI
   return hubs;
 }
 
+// At most this many chunks per slab in the slab window: each chunk costs another construction of the slab's hubs.
+constexpr std::int64_t kMaxSlabChunks = 64;
+
 // Bytes the pieces of one hub take, for the memory budget (a ball and one stump per incident pattern end).
 std::uint64_t bytes_per_hub(const Lattice& lattice) {
   return sizeof(HubPieces) + sizeof(Piece) * (1 + 2 * static_cast<std::uint64_t>(lattice.pattern_count()));
@@ -308,14 +311,29 @@ HubOverlapReport check_hub_overlaps(const Lattice& lattice, std::size_t max_repo
   for (const BeamPattern& b : lattice.definition().beams) D = std::max(D, std::abs(b.dk));
   const std::int64_t w = c.w;
   const std::int64_t rep = std::min<std::int64_t>(D, w - 1);
-  const std::vector<HubPieces> rep_slab = pieces_of(lattice, slab_nodes(lattice, rep));
+  // The slabs' hubs are made a chunk at a time (ids in slab order), so that no more than two chunks are held:
+  // slabs of 10^6 hubs (a lattice of 10^9) take 1.3 GB each, more than a process limited to 2 GiB may use.
+  const std::vector<NodeId> rep_nodes = slab_nodes(lattice, rep);
+  const std::int64_t per_slab = static_cast<std::int64_t>(rep_nodes.size());
+  const std::uint64_t slab_bytes = static_cast<std::uint64_t>(per_slab) * bytes_per_hub(lattice);
+  // Two chunks in half the budget: the other half for the broad phase's grid and what the process maps meanwhile.
+  const std::int64_t chunks = std::clamp<std::int64_t>(
+      static_cast<std::int64_t>(4 * slab_bytes / std::max<std::uint64_t>(memory_budget_bytes(), 1) + 1), 1,
+      std::min<std::int64_t>(kMaxSlabChunks, std::max<std::int64_t>(per_slab, 1)));
+  const std::int64_t chunk_size = (per_slab + chunks - 1) / std::max<std::int64_t>(chunks, 1);
+  auto chunk_of = [&](const std::vector<NodeId>& ids, std::int64_t c) {
+    const std::size_t begin = std::min(ids.size(), static_cast<std::size_t>(c * chunk_size));
+    const std::size_t end = std::min(ids.size(), static_cast<std::size_t>((c + 1) * chunk_size));
+    return pieces_of(lattice, std::vector<NodeId>(ids.begin() + begin, ids.begin() + end));
+  };
   // The representative slab's box (hub bounding spheres); slab rep + delta lies in the box spanned by the
   // images of its corners under W^delta (a similarity maps a box into the box of its corners' images).
   Vec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-  for (const HubPieces& h : rep_slab) {
-    lo = glm::min(lo, h.center - h.reach);
-    hi = glm::max(hi, h.center + h.reach);
-  }
+  for (std::int64_t ch = 0; ch < chunks; ++ch)
+    for (const HubPieces& h : chunk_of(rep_nodes, ch)) {
+      lo = glm::min(lo, h.center - h.reach);
+      hi = glm::max(hi, h.center + h.reach);
+    }
   auto image_box_meets = [&](const Similarity& S) {
     Vec3 ilo(std::numeric_limits<double>::max()), ihi(-std::numeric_limits<double>::max());
     for (int corner = 0; corner < 8; ++corner) {
@@ -333,7 +351,7 @@ HubOverlapReport check_hub_overlaps(const Lattice& lattice, std::size_t max_repo
   std::vector<SlabPair> pairs;
   const Similarity& W = lattice.layout().steady_brick()->steps[2];  // the last applied step
   for (std::int64_t delta = 0; delta < w; ++delta) {
-    if (delta > 0 && !rep_slab.empty() && !image_box_meets(W.power(static_cast<double>(delta)))) continue;
+    if (delta > 0 && per_slab > 0 && !image_box_meets(W.power(static_cast<double>(delta)))) continue;
     for (std::int64_t k = 0; k + delta < w; ++k) {
       const bool border = k < D || k + delta >= w - D;
       if (border) {
@@ -343,31 +361,40 @@ HubOverlapReport check_hub_overlaps(const Lattice& lattice, std::size_t max_repo
       }
     }
   }
-  const std::int64_t per_slab = static_cast<std::int64_t>(rep_slab.size());
   const std::int64_t work = 2 * per_slab * static_cast<std::int64_t>(pairs.size());
   report.hubs_checked = work;
   if (work > kMaxHubOverlapCheckHubs) {
     finish(report, max_reports);
     return report;  // not verified
   }
-  require_memory(2 * static_cast<std::uint64_t>(per_slab) * bytes_per_hub(lattice),
-                 "clean check of 2 slabs of " + std::to_string(per_slab) + " hubs",
+  require_memory(2 * static_cast<std::uint64_t>(chunk_size) * bytes_per_hub(lattice),
+                 "clean check of 2 slabs of " + std::to_string(per_slab) + " hubs (in " + std::to_string(chunks) +
+                     " chunks each)",
                  "check a smaller lattice of the same steps (fewer groups per slab)");
-  progress.set_total(work / 2);
+  progress.set_total(std::max<std::int64_t>(1, per_slab * static_cast<std::int64_t>(pairs.size()) * chunks));
   std::sort(pairs.begin(), pairs.end(), [](const SlabPair& x, const SlabPair& y) {
     return std::tie(x.k1, x.k2) < std::tie(y.k1, y.k2);
   });
+  // Every chunk of slab k1 against every chunk of slab k2 (each unordered pair once within one slab): every pair
+  // of hubs is compared, as with whole slabs; C chunks cost C times the hubs' construction, not more memory.
   std::int64_t loaded = -1;
-  std::vector<HubPieces> first;
+  std::vector<NodeId> first_nodes;
   for (const SlabPair& pr : pairs) {
     if (pr.k1 != loaded) {
-      first = pieces_of(lattice, slab_nodes(lattice, pr.k1));
+      first_nodes = slab_nodes(lattice, pr.k1);
       loaded = pr.k1;
     }
-    if (pr.k2 == pr.k1) {
-      check_hubs(first, first, true, pr.multiplicity, out, progress);
-    } else {
-      check_hubs(first, pieces_of(lattice, slab_nodes(lattice, pr.k2)), false, pr.multiplicity, out, progress);
+    const std::vector<NodeId> second_nodes = pr.k2 == pr.k1 ? std::vector<NodeId>() : slab_nodes(lattice, pr.k2);
+    for (std::int64_t a = 0; a < chunks; ++a) {
+      const std::vector<HubPieces> first = chunk_of(first_nodes, a);
+      if (pr.k2 == pr.k1) {
+        check_hubs(first, first, true, pr.multiplicity, out, progress);
+        for (std::int64_t b = a + 1; b < chunks; ++b)
+          check_hubs(first, chunk_of(first_nodes, b), false, pr.multiplicity, out, progress);
+      } else {
+        for (std::int64_t b = 0; b < chunks; ++b)
+          check_hubs(first, chunk_of(second_nodes, b), false, pr.multiplicity, out, progress);
+      }
     }
   }
   report.verified = true;

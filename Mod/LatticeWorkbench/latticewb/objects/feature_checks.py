@@ -94,6 +94,13 @@ def _body_problem(obj, one_solid):
         return "%s holds no solid (a closed solid is needed, not a face, shell or sketch)" % body.Label
     if one_solid and solids > 1:
         return "%s holds %d solids: link one solid" % (body.Label, solids)
+    # A filter's body of several solids is their union; a face beside them (a loose face or open shell) bounds no
+    # volume and would be ignored without a word.
+    in_solids = {f.hashCode() for s in shape.Solids for f in s.Faces}
+    loose = sum(1 for f in shape.Faces if f.hashCode() not in in_solids)
+    if loose:
+        return ("%s holds %d faces outside its solids (a loose face or open shell bounds no volume): link solids "
+                "only" % (body.Label, loose))
     return None
 
 

@@ -5,7 +5,7 @@ Kinds:
   stencil             keep node (i, j, k) when StencilMask says so, repeating with period StencilSize
   lattice-in-lattice  keep a node whose ball meets the Coarse lattice (a SteadyLattice or LatticeFilter)
   gyroid              keep a node inside a gyroid sheet (or solid) of the given period and thickness
-  inside body         keep a node whose centre is inside the Body (a solid)
+  inside body         keep a node whose centre is inside the Body (a solid; several solids: their union)
 Invert keeps the complement. Nothing is stored per element: the kernel evaluates the filter on demand.
 """
 import FreeCAD
@@ -28,7 +28,7 @@ _PROPERTIES = [
     ("App::PropertyLength", "GyroidPeriod", "Gyroid", "Period of the gyroid field"),
     ("App::PropertyFloat", "GyroidThickness", "Gyroid", "Half-thickness of the sheet in field units (0 to 1.5)"),
     ("App::PropertyEnumeration", "GyroidMode", "Gyroid", "sheet: |g| <= thickness; solid: g <= thickness"),
-    ("App::PropertyLink", "Body", "Inside body", "Keep the nodes whose centres are inside this solid"),
+    ("App::PropertyLink", "Body", "Inside body", "Keep the nodes whose centres are inside this solid (several solids: inside any of them)"),
     ("App::PropertyInteger", "BallCount", "Result", "Balls kept (read only)"),
     ("App::PropertyInteger", "BeamCount", "Result", "Beams kept (read only)"),
 ]

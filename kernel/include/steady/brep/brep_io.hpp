@@ -4,6 +4,7 @@
 #include <TopoDS_Shape.hxx>
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include "steady/core/progress.hpp"
@@ -13,8 +14,15 @@ namespace steady {
 // OpenCASCADE's BREP text (what FreeCAD's Part.Shape.exportBrepToString gives and importBrep reads). Cancelled
 // when the progress is cancelled.
 std::string brep_to_text(const TopoDS_Shape& shape, Progress& progress = no_progress());
-// Reads BREP text; throws InvalidInput naming `field` when the text does not parse or holds no shape.
+// Reads BREP text in this process; throws InvalidInput naming `field` when the text does not parse or holds no
+// shape. For text OpenCASCADE wrote (the kernel's own copies); a body from outside goes through read_body_brep.
 TopoDS_Shape brep_from_text(const std::string& text, const std::string& field);
+// Reads the BREP text of a body from outside (a user's file, FreeCAD) in a reader process of its own
+// (brep/child_reader.hpp): brep_from_text, OpenCASCADE's checker and `check` (more refusals, InvalidInput) run
+// there, so a crash of the reader or checker on a corrupt text is an InvalidInput naming `field`, and a cancel of
+// the current progress (Ctrl-C) stops it within 0.1 s.
+TopoDS_Shape read_body_brep(const std::string& text, const std::string& field,
+                            const std::function<void(const TopoDS_Shape&)>& check = {});
 // Throws InvalidInput naming `field` when a face has no surface, an edge (not degenerated) no 3D curve, a curve or
 // point representation misses the curve, surface or polygon it names, or a vertex has no finite point.
 // OpenCASCADE's readers (BREP and STEP) leave such holes where a record does not parse, and say nothing; its

@@ -33,7 +33,9 @@ void check_step_name(const std::string& name, const char* field);
 void write_step_assembly(const std::string& path, const std::vector<StepPart>& parts,
                          const std::string& assembly_name = "LatticePart", Progress& progress = no_progress());
 
-// Reads a STEP file back: the leaf parts with their names, colours and shapes (placed).
+// Reads a STEP file back: the leaf parts with their names, colours and shapes (placed). The file is read and
+// checked in a reader process of its own (read_body_brep in brep_io.hpp says why): a file that crashes
+// OpenCASCADE's reader is an InvalidInput naming "path", and a cancel of the current progress stops the read.
 std::vector<StepPart> read_step_parts(const std::string& path);
 
 }  // namespace steady

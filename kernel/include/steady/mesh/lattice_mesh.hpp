@@ -12,6 +12,7 @@
 // Accuracy: `tolerance` bounds, in model units, the distance from every triangle to the exact surface of its
 // ball or cone (chord error); every vertex lies on the exact surface (the mesh is inscribed).
 #include <cstdint>
+#include <string>
 
 #include "steady/core/progress.hpp"
 #include "steady/lattice/flat_lattice.hpp"
@@ -36,9 +37,22 @@ struct LatticeMeshStats {
   double placing_seconds = 0.0;      // placing copies and strips
 };
 
+// An estimate of the mesh lattice_mesh makes, from the tolerance, the balls' radii and the beams alone (no
+// template is made; linear in the elements): an upper bound of the counts for clean hubs (crowded hubs, tessellated
+// by refinement, may exceed it; tests/kernel/test_mesh_estimate.cpp measures it against real meshes).
+struct MeshEstimate {
+  double vertices = 0.0, triangles = 0.0;  // double: a tiny tolerance gives counts beyond any integer type
+  double bytes = 0.0;                      // of the indexed mesh (vertices and triangles)
+};
+MeshEstimate estimate_lattice_mesh(const FlatLattice& lattice, double tolerance);
+// Throws ResourceLimit when the estimate exceeds the memory budget, with the estimate, the tolerance that would fit
+// and what to do instead (streamed STL, a 3MF beam lattice); `what` names the call.
+void require_mesh_memory(const FlatLattice& lattice, double tolerance, const std::string& what);
+
 // InvalidInput: tolerance not finite or not positive ("tolerance"), tolerance of a quarter of a ball's radius or
 // more, a lattice whose elements meet foreign ones ("lattice"), a crowded hub whose collars do not fit ("hub").
-// ResourceLimit: a mesh beyond the memory budget (names the triangle count; a larger tolerance helps).
+// ResourceLimit: a mesh beyond the memory budget, refused from the estimate before any work (names the triangle
+// count and a tolerance that fits), then from the exact count once the templates are made.
 TriangleMesh lattice_mesh(const FlatLattice& lattice, const MeshOptions& options, LatticeMeshStats* stats = nullptr,
                           Progress& progress = no_progress());
 TriangleMesh lattice_mesh(const Lattice& lattice, const MeshOptions& options, LatticeMeshStats* stats = nullptr,
