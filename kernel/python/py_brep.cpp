@@ -110,6 +110,39 @@ void fill_stats(const steady::TrimStats& s, py::dict& d) {
   d["union_seconds"] = s.union_seconds;
 }
 
+// Lattice.bridge_plan: the bridged lattice the 'bridge' policy trims, as arrays, with its bridges.
+py::dict bridge_plan_dict(const Lattice& lat, const std::string& body, double skin) {
+  const steady::BridgePlan plan = run_interruptible(
+      [&] { return steady::plan_bridges(steady::flatten(lat), steady::read_body_brep(body, "body"), skin); });
+  const steady::FlatLattice& f = plan.lattice;
+  py::array_t<double> centers({f.ball_count(), std::int64_t(3)}), radii(f.ball_count()), ra(f.beam_count()),
+      rb(f.beam_count());
+  py::array_t<std::int64_t> a(f.beam_count()), b(f.beam_count());
+  for (std::int64_t i = 0; i < f.ball_count(); ++i) {
+    for (int k = 0; k < 3; ++k) centers.mutable_at(i, k) = f.balls[i].center[k];
+    radii.mutable_at(i) = f.balls[i].radius;
+  }
+  for (std::int64_t e = 0; e < f.beam_count(); ++e) {
+    a.mutable_at(e) = f.beams[e].a;
+    b.mutable_at(e) = f.beams[e].b;
+    ra.mutable_at(e) = f.beams[e].ra;
+    rb.mutable_at(e) = f.beams[e].rb;
+  }
+  py::list bridges;
+  for (const steady::Bridge& br : plan.bridges)
+    bridges.append(py::dict(py::arg("hub") = br.hub, py::arg("wall") = vec3_array(br.wall),
+                            py::arg("end") = vec3_array(br.end), py::arg("radius") = br.radius,
+                            py::arg("ambiguous") = br.ambiguous));
+  py::dict d;
+  d["balls"] = py::make_tuple(centers, radii);
+  d["beams"] = py::make_tuple(a, b, ra, rb);
+  d["kept"] = py::array_t<std::int64_t>(plan.kept.size(), plan.kept.data());
+  d["bridges"] = bridges;
+  d["blocked"] = plan.blocked;
+  d["lost_neighbour_hubs"] = plan.lost_neighbour_hubs;
+  return d;
+}
+
 }  // namespace
 
 void bind_brep(py::module_& m) {
@@ -177,37 +210,7 @@ void bind_brep(py::module_& m) {
       "a folder where a boundary cluster that fails every attempt is written as BREP, for study.");
   lattice.def(
       "bridge_plan",
-      [](const Lattice& lat, const std::string& body, double skin) {
-        const steady::BridgePlan plan = run_interruptible(
-            [&] { return steady::plan_bridges(steady::flatten(lat), steady::brep_from_text(body, "body"), skin); });
-        const steady::FlatLattice& f = plan.lattice;
-        py::array_t<double> centers({f.ball_count(), std::int64_t(3)}), radii(f.ball_count()), ra(f.beam_count()),
-            rb(f.beam_count());
-        py::array_t<std::int64_t> a(f.beam_count()), b(f.beam_count());
-        for (std::int64_t i = 0; i < f.ball_count(); ++i) {
-          for (int k = 0; k < 3; ++k) centers.mutable_at(i, k) = f.balls[i].center[k];
-          radii.mutable_at(i) = f.balls[i].radius;
-        }
-        for (std::int64_t e = 0; e < f.beam_count(); ++e) {
-          a.mutable_at(e) = f.beams[e].a;
-          b.mutable_at(e) = f.beams[e].b;
-          ra.mutable_at(e) = f.beams[e].ra;
-          rb.mutable_at(e) = f.beams[e].rb;
-        }
-        py::list bridges;
-        for (const steady::Bridge& br : plan.bridges)
-          bridges.append(py::dict(py::arg("hub") = br.hub, py::arg("wall") = vec3_array(br.wall),
-                                  py::arg("end") = vec3_array(br.end), py::arg("radius") = br.radius,
-                                  py::arg("ambiguous") = br.ambiguous));
-        py::dict d;
-        d["balls"] = py::make_tuple(centers, radii);
-        d["beams"] = py::make_tuple(a, b, ra, rb);
-        d["kept"] = py::array_t<std::int64_t>(plan.kept.size(), plan.kept.data());
-        d["bridges"] = bridges;
-        d["blocked"] = plan.blocked;
-        d["lost_neighbour_hubs"] = plan.lost_neighbour_hubs;
-        return d;
-      },
+      &bridge_plan_dict,
       py::arg("body"), py::arg("skin") = 0.0,
       "What brep(body, 'bridge', skin) trims with policy 'clip': {balls: (centers, radii), beams: (a, b, ra, rb)} of "
       "the bridged lattice (the kept hubs first, then one far node per bridge; the beams between kept hubs, then the "

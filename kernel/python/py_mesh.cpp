@@ -99,7 +99,7 @@ steady::FlatLattice mesh_lattice(const Lattice& lat, const MeshPolicy& m, const 
     value_error("skin", "must be the thickness of the skin whose inner surface `inner` is (> 0 with inner, 0 without)");
   const std::string text = m.brep.cast<std::string>();
   const steady::BridgePlan plan = run_interruptible(
-      [&] { return steady::plan_bridges(steady::flatten(lat), steady::brep_from_text(text, "brep"), m.skin); });
+      [&] { return steady::plan_bridges(steady::flatten(lat), steady::read_body_brep(text, "brep"), m.skin); });
   stats["kept_hubs"] = static_cast<std::int64_t>(plan.kept.size());
   stats["lost_neighbour_hubs"] = plan.lost_neighbour_hubs;
   stats["bridges"] = static_cast<std::int64_t>(plan.bridges.size());

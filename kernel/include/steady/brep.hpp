@@ -4,6 +4,7 @@
 #include "steady/steady.hpp"
 
 #include "steady/brep/body_filter.hpp"
+#include "steady/brep/bridges.hpp"
 #include "steady/brep/brep_builder.hpp"
 #include "steady/brep/brep_io.hpp"
 #include "steady/brep/lattice_part.hpp"
