@@ -1259,7 +1259,7 @@ HubShape core_hub_shape(const std::vector<CoreStump>& stumps, const std::vector<
 // another, so the frustums add exactly).
 std::pair<double, double> core_volumes(const HubCore& core, const std::vector<CoreStump>& stumps) {
   GProp_GProps closed;
-  BRepGProp::VolumeProperties(closed_core(core), closed, 1e-9, Standard_True);
+  BRepGProp::VolumeProperties(closed_core(core), closed, 1e-8, Standard_True);
   double built = closed.Mass();
   std::vector<double> cuts = core.collar_position;
   std::vector<double> apart = cuts;
