@@ -39,6 +39,24 @@ CoreStump hull_stump(const Vec3& d, double sin_phi) {
   return s;
 }
 
+// A hub's stumps in its canonical frame as a failing case printed them, all of one end radius.
+struct StumpRecord {
+  Vec3 direction;
+  double sin_phi, exit;
+};
+std::vector<CoreStump> stumps_of(const std::vector<StumpRecord>& hub, double end_radius) {
+  std::vector<CoreStump> stumps;
+  for (const StumpRecord& h : hub) {
+    CoreStump s;
+    s.direction = h.direction;
+    s.sin_phi = h.sin_phi;
+    s.end_radius = end_radius;
+    s.exit = h.exit;
+    stumps.push_back(s);
+  }
+  return stumps;
+}
+
 // The quadrature converges fast where faces meet tangentially (the hull model: 1e-6 at 1200) and only to first
 // order across transversal kinks (sphere and thinner stumps: ~1e-4 at 2400).
 void expect_core(const std::vector<CoreStump>& stumps, CoreKind kind, const std::string& what) {
@@ -215,11 +233,7 @@ TEST(HubCore, OctetHubsOfEveryRatio) {
 // self-intersecting: the verdict hung on the 15 digits of the text (cusp_tolerance.hpp). The stumps are that hub's
 // in its canonical frame, to the last digit.
 TEST(HubCore, TangentCapsCoreSurvivesItsBrepText) {
-  struct Stump {
-    Vec3 direction;
-    double sin_phi, exit;
-  };
-  const std::vector<Stump> hub = {
+  const std::vector<StumpRecord> hub = {
       {{0, 0, 1}, 0.0, 0.86602540378443815},
       {{1, 0, 0}, 0.0, 0.86602540378443815},
       {{-0.99835218437901463, 0.056686281661593008, 0.0089208417221931496}, -0.0061839458916051115, 0.86291687176070908},
@@ -228,15 +242,7 @@ TEST(HubCore, TangentCapsCoreSurvivesItsBrepText) {
       {{0.50000000000000011, -0.70710678118654757, -0.5}, 0.0, 0.86602540378443815},
       {{0.50000000000000011, -0.70710678118654757, 0.5}, 0.0, 0.86602540378443815},
       {{-0.50000000000000056, -0.70710678118654702, -0.50000000000000044}, -0.0062499999999999821, 0.86288348906058665}};
-  std::vector<CoreStump> stumps;
-  for (const Stump& h : hub) {
-    CoreStump s;
-    s.direction = h.direction;
-    s.sin_phi = h.sin_phi;
-    s.end_radius = 0.50000000000000011;
-    s.exit = h.exit;
-    stumps.push_back(s);
-  }
+  const std::vector<CoreStump> stumps = stumps_of(hub, 0.50000000000000011);
   const auto core = build_hub_core(stumps, CoreKind::Transversal,
                                    core_collars(stumps, CoreKind::Transversal, kMaxCollarPosition));
   const TopoDS_Shape solid = closed_core(*core);
@@ -304,11 +310,7 @@ TEST(HubCore, TangentBeamsRoundedAboveTheBallRadiusAreTheHullModel) {
 // refuses the hub and the Fuse builds it. OpenCASCADE's Fuse split the collar disk of stump 3 at 1.02 (with both
 // sets of collars tried then) and left it whole 6 % farther out. The stumps are that hub's to the last digit.
 TEST(HubCore, FuseThatSplitsACollarIsRetriedWithCollarsFartherOut) {
-  struct Stump {
-    Vec3 direction;
-    double sin_phi, exit;
-  };
-  const std::vector<Stump> hub = {
+  const std::vector<StumpRecord> hub = {
       {{1.1102230246251568e-16, 0, 1}, -0.0, 0.86602540378443837},
       {{0.86602540378443882, 0, 0.5}, -0.0, 0.86602540378443837},
       {{-0.57735026918962584, -0.81649658092772615, 0}, 0, 0.8660254037844386},
@@ -317,15 +319,7 @@ TEST(HubCore, FuseThatSplitsACollarIsRetriedWithCollarsFartherOut) {
       {{0.28867513459481287, -0.81649658092772615, -0.5}, 0, 0.8660254037844386},
       {{0.28867513459481298, -0.81649658092772615, 0.5}, 0, 0.86602540378443837},
       {{0.8660254037844386, 7.2164496600635195e-16, -0.50000000000000044}, -0.01125, 0.86034559888023887}};
-  std::vector<CoreStump> stumps;
-  for (const Stump& h : hub) {
-    CoreStump s;
-    s.direction = h.direction;
-    s.sin_phi = h.sin_phi;
-    s.end_radius = 0.5;
-    s.exit = h.exit;
-    stumps.push_back(s);
-  }
+  const std::vector<CoreStump> stumps = stumps_of(hub, 0.5);
   const std::vector<double> asked = core_collars(stumps, CoreKind::Transversal, kMaxCollarPosition);
   const auto core = build_hub_core(stumps, CoreKind::Transversal, asked);
   EXPECT_TRUE(core->fused);
