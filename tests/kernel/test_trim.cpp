@@ -38,27 +38,8 @@
 namespace steady {
 namespace {
 
+using test::grid_lattice;
 using test::in_lattice;
-
-// An axis-aligned cubic strut lattice: nodes at integer points of [0, n)^3, beams along x, y, z with end radii
-// that differ (general cones).
-FlatLattice grid_lattice(int n, double node_radius = 0.25) {
-  std::vector<Ball> balls;
-  std::vector<FlatBeam> beams;
-  auto id = [&](int i, int j, int k) { return (k * n + j) * n + i; };
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) balls.push_back({{double(i), double(j), double(k)}, node_radius});
-  const double radii[3][2] = {{0.10, 0.12}, {0.11, 0.09}, {0.08, 0.10}};
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        if (i + 1 < n) beams.push_back({id(i, j, k), id(i + 1, j, k), radii[0][0], radii[0][1]});
-        if (j + 1 < n) beams.push_back({id(i, j, k), id(i, j + 1, k), radii[1][0], radii[1][1]});
-        if (k + 1 < n) beams.push_back({id(i, j, k), id(i, j, k + 1), radii[2][0], radii[2][1]});
-      }
-  return make_flat_lattice(balls, beams);
-}
 
 // Volume of a beam's part from node `from`'s exit plane to the plane at axial distance p from that node's
 // center, minus the cap beyond the exit plane (closed form, computed here from scratch).

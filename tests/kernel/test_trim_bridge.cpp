@@ -19,6 +19,7 @@
 #include "steady/brep/brep_io.hpp"
 #include "steady/brep/bridges.hpp"
 #include "steady/brep/trim.hpp"
+#include "test_lattices.hpp"
 #include "steady/core/constants.hpp"
 #include "steady/core/errors.hpp"
 #include "steady/core/progress.hpp"
@@ -29,23 +30,7 @@
 namespace steady {
 namespace {
 
-// An axis-aligned cubic strut lattice on the integer points of [0, n)^3, beams with unequal end radii.
-FlatLattice grid(int n, double node_radius = 0.25) {
-  std::vector<Ball> balls;
-  std::vector<FlatBeam> beams;
-  auto id = [&](int i, int j, int k) { return (k * n + j) * n + i; };
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) balls.push_back({{double(i), double(j), double(k)}, node_radius});
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        if (i + 1 < n) beams.push_back({id(i, j, k), id(i + 1, j, k), 0.10, 0.12});
-        if (j + 1 < n) beams.push_back({id(i, j, k), id(i, j + 1, k), 0.11, 0.09});
-        if (k + 1 < n) beams.push_back({id(i, j, k), id(i, j, k + 1), 0.08, 0.10});
-      }
-  return make_flat_lattice(balls, beams);
-}
+using test::grid_lattice;
 
 // A body with its wall described independently of OpenCASCADE: membership in the body shrunk by t, the distance
 // from an inside point to the wall of the body shrunk by t, the volume of the skin of thickness t.
@@ -169,13 +154,13 @@ void check_bridged(const FlatLattice& f, const Body& body, double skin, const st
 }
 
 TEST(TrimBridge, StrutGridInCylinderAndConeAgreesWithMonteCarlo) {
-  const FlatLattice f = grid(6);
+  const FlatLattice f = grid_lattice(6);
   check_bridged(f, cylinder(), 0.0, "grid in cylinder");
   check_bridged(f, cone(), 0.0, "grid in cone");
 }
 
 TEST(TrimBridge, StrutGridInCylinderWithSkinAgreesWithMonteCarlo) {
-  check_bridged(grid(6), cylinder(), 0.3, "grid in cylinder, skin 0.3");
+  check_bridged(grid_lattice(6), cylinder(), 0.3, "grid in cylinder, skin 0.3");
 }
 
 // Hub A keeps a beam to hub K and loses one to X outside the box; its nearest wall point lies beyond K, so its
@@ -227,7 +212,7 @@ TEST(TrimBridge, AHubOnTheMedialAxisTakesOneNearestPoint) {
 // clip of the bridged lattice; cancelled early (in the plan) or late (in the clip), it throws Cancelled, and a full
 // run afterwards gives the same part.
 TEST(TrimBridge, ReportsProgressAndCancels) {
-  const FlatLattice f = grid(5);
+  const FlatLattice f = grid_lattice(5);
   const TopoDS_Shape body = cylinder().shape;
   TrimOptions o;
   o.policy = TrimPolicy::Bridge;
@@ -269,7 +254,7 @@ TEST(TrimBridge, BadInputNamesThePolicy) {
     EXPECT_NE(std::string(e.what()).find("policy"), std::string::npos) << e.what();
   }
   // Every hub crosses the wall: nothing to keep, nothing to bridge.
-  const FlatLattice f = grid(3);
+  const FlatLattice f = grid_lattice(3);
   const TopoDS_Shape thin = BRepPrimAPI_MakeBox(gp_Pnt(-0.5, -0.5, 0.9), gp_Pnt(2.5, 2.5, 1.1)).Shape();
   TrimOptions o;
   o.policy = TrimPolicy::Bridge;
