@@ -86,18 +86,12 @@ BridgePlan plan_bridges(const FlatLattice& f, const TopoDS_Shape& body_shape, do
   BridgePlan plan;
   const std::int64_t n = f.ball_count();
   std::vector<char> kept(n, 0);
-  bool any_in_body = false;
-  for (std::int64_t i = 0; i < n; ++i) {
-    const HubState o = states.outer[i], s = states.inner[i];
-    if (o == HubState::Absent) continue;
-    any_in_body = any_in_body || o != HubState::Outside;
-    plan.inside_hubs += s == HubState::Inside;
-    plan.outside_hubs += s == HubState::Outside;
-    plan.crossing_hubs += s == HubState::Crossing;
-    kept[i] = o == HubState::Inside && s == HubState::Inside;
-  }
-  if (!any_in_body)
-    fail_input("body", "the lattice does not meet the body (all " + std::to_string(n) + " hubs lie outside it)");
+  const trim::HubCounts counts = trim::count_hubs(states);
+  plan.inside_hubs = counts.inside;
+  plan.outside_hubs = counts.outside;
+  plan.crossing_hubs = counts.crossing;
+  for (std::int64_t i = 0; i < n; ++i)
+    kept[i] = states.outer[i] == HubState::Inside && states.inner[i] == HubState::Inside;
   if (std::none_of(kept.begin(), kept.end(), [](char c) { return c; }))
     fail_input("policy", std::string("'bridge' keeps only hubs entirely inside the ") +
                              (bodies.inner ? "skin's inner wall" : "body") + ", and none is: nothing to bridge");

@@ -67,6 +67,13 @@ struct HubStates {
 HubStates classify(const FlatLattice& f, const std::vector<BeamFrustum>& frustums, const std::vector<char>& absorbed,
                    const Bodies& bodies, TrimStats& stats, TrimBudget& budget);
 
+// How many of the lattice's hubs lie inside, outside and across the inner boundary (the body's without a skin).
+// InvalidInput naming "body" when none meets the body.
+struct HubCounts {
+  std::int64_t inside = 0, outside = 0, crossing = 0;
+};
+HubCounts count_hubs(const HubStates& states);
+
 struct HubRoles {
   std::vector<char> interior, band;  // per ball: built whole with no Boolean / clipped in a boundary cluster
   std::vector<char> beam_kept;       // per beam

@@ -188,6 +188,23 @@ HubStates classify(const FlatLattice& f, const std::vector<BeamFrustum>& frustum
   return out;
 }
 
+HubCounts count_hubs(const HubStates& states) {
+  HubCounts c;
+  bool any_in_body = false;
+  for (std::size_t i = 0; i < states.outer.size(); ++i) {
+    const HubState o = states.outer[i], s = states.inner[i];
+    if (o == HubState::Absent) continue;
+    any_in_body = any_in_body || o != HubState::Outside;
+    c.inside += s == HubState::Inside;
+    c.outside += s == HubState::Outside;
+    c.crossing += s == HubState::Crossing;
+  }
+  if (!any_in_body)
+    fail_input("body", "the lattice does not meet the body (all " + std::to_string(states.outer.size()) +
+                           " hubs lie outside it)");
+  return c;
+}
+
 HubRoles assign_roles(const FlatLattice& f, const std::vector<BeamFrustum>& frustums, const HubStates& states,
                       const TrimOptions& options, bool has_skin, TrimStats& stats) {
   // Hubs: interior hubs are built whole with no Boolean; band hubs go through the Booleans.
@@ -195,14 +212,13 @@ HubRoles assign_roles(const FlatLattice& f, const std::vector<BeamFrustum>& frus
   HubRoles r;
   r.interior.assign(n, 0);
   r.band.assign(n, 0);
-  bool any_in_body = false;
+  const HubCounts counts = count_hubs(states);
+  stats.inside_hubs += counts.inside;
+  stats.outside_hubs += counts.outside;
+  stats.crossing_hubs += counts.crossing;
   for (std::int64_t i = 0; i < n; ++i) {
     const HubState o = states.outer[i], s = states.inner[i];
     if (o == HubState::Absent) continue;
-    any_in_body = any_in_body || o != HubState::Outside;
-    stats.inside_hubs += s == HubState::Inside;
-    stats.outside_hubs += s == HubState::Outside;
-    stats.crossing_hubs += s == HubState::Crossing;
     if (options.policy == TrimPolicy::Clip) {
       r.interior[i] = s == HubState::Inside;
       r.band[i] = s == HubState::Crossing;
@@ -212,8 +228,6 @@ HubRoles assign_roles(const FlatLattice& f, const std::vector<BeamFrustum>& frus
       r.band[i] = has_skin && o == HubState::Inside && s == HubState::Crossing;
     }
   }
-  if (!any_in_body)
-    fail_input("body", "the lattice does not meet the body (all " + std::to_string(n) + " hubs lie outside it)");
   r.has_band = std::any_of(r.band.begin(), r.band.end(), [](char c) { return c; });
   const bool nothing_kept = !r.has_band && std::none_of(r.interior.begin(), r.interior.end(), [](char c) { return c; });
   if (nothing_kept) {
