@@ -17,6 +17,7 @@
 
 #include <unistd.h>
 
+#include "brep/child_reader.hpp"
 #include "steady/brep/brep_io.hpp"
 #include "steady/brep/solid_body.hpp"
 #include "steady/brep/step_assembly.hpp"
@@ -138,7 +139,7 @@ TEST(BodyInputs, StepBodyThatClassifiesFarPointsInsideIsRefused) {
   const std::vector<StepPart> parts = read_step_parts(std::string(STEADY_TEST_DATA) + "/fuzz/step_edge_reference_changed.step");
   ASSERT_EQ(parts.size(), 1u);
   const std::string message = refusal([&] { SolidBody body(parts[0].shape, "body"); });
-  EXPECT_EQ(message.rfind("body: is not a consistent solid: a point outside its bounding box is classified inside", 0), 0u)
+  EXPECT_EQ(message.rfind("body: is not a consistent solid: OpenCASCADE classifies a point inside that its faces put outside its bounding box", 0), 0u)
       << message;
   // The file it came from is a body.
   const std::vector<StepPart> good =
@@ -221,6 +222,26 @@ TEST(BodyInputs, ACancelStopsTheReaderProcessWithinASecond) {
   EXPECT_THROW(read_body_brep(text, "body"), Cancelled);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_LT(seconds, 1.3);  // 0.3 s before the cancel, then a poll of 50 ms and the kill
+}
+
+TEST(BodyInputs, AReaderStillRunningAfterItsTimeLimitIsStopped) {
+  // What a headless script with nobody to press Ctrl-C gets when a reader loops on a corrupt file: a refusal once
+  // the limit (here 0.5 s, set as a user would) has passed, naming the field and how to allow more time.
+  const std::string text = slow_brep_text(3000000);  // about 3 s to read here
+  ASSERT_EQ(::setenv("STEADY_READER_SECONDS", "0.5", 1), 0);
+  const auto start = std::chrono::steady_clock::now();
+  const std::string message = refusal([&] { read_body_brep(text, "body"); });
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ::unsetenv("STEADY_READER_SECONDS");
+  EXPECT_LT(seconds, 1.5);  // the limit, then a poll of 50 ms and the kill
+  EXPECT_NE(message.find("body: OpenCASCADE's BREP reader was still reading the BREP text after 0.5 s"), std::string::npos)
+      << message;
+  EXPECT_NE(message.find("STEADY_READER_SECONDS"), std::string::npos);
+  // Unset (or not a positive number), the limit grows with the input: 120 s, plus 30 s per MB.
+  ASSERT_EQ(::setenv("STEADY_READER_SECONDS", "-3", 1), 0);
+  EXPECT_DOUBLE_EQ(reader_time_limit_seconds(2000000), 180.0);
+  ::unsetenv("STEADY_READER_SECONDS");
+  EXPECT_DOUBLE_EQ(reader_time_limit_seconds(0), 120.0);
 }
 
 }  // namespace

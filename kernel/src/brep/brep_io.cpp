@@ -88,7 +88,7 @@ TopoDS_Shape read_body_brep(const std::string& text, const std::string& field,
         if (check) check(shape);
         return shape_to_binary(shape);
       },
-      field, "the BREP text", "BREP reader");
+      field, "the BREP text", "BREP reader", text.size());
   return shape_from_binary(binary);
 }
 

@@ -12,6 +12,9 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <new>
@@ -30,6 +33,20 @@ constexpr char kDone = 'S', kInvalid = 'I', kLimit = 'R', kOutOfMemory = 'M', kF
 
 // How often the parent looks at the progress while the child reads: well within the 0.1 s of a progress poll.
 constexpr int kPollMilliseconds = 50;
+
+// The reader's time limit when STEADY_READER_SECONDS does not set one: OpenCASCADE reads some 10 MB of STEP or BREP
+// a second here, so 120 s plus 30 s per MB leaves a valid file a margin of ten or more, while a reader spinning on
+// a corrupt file (docs/reliability.md) is stopped in a headless script where nobody presses Ctrl-C.
+constexpr double kBaseSeconds = 120.0, kSecondsPerMegabyte = 30.0;
+
+// A positive finite number of seconds from STEADY_READER_SECONDS, or 0 when it is unset or not such a number.
+double seconds_from_environment() {
+  const char* text = std::getenv("STEADY_READER_SECONDS");
+  if (!text) return 0;
+  char* end = nullptr;
+  const double seconds = std::strtod(text, &end);
+  return end != text && *end == '\0' && std::isfinite(seconds) && seconds > 0 ? seconds : 0;
+}
 
 void write_all(int fd, const char* data, std::size_t size) {
   while (size > 0) {
@@ -115,12 +132,14 @@ class Child {
   Child(const Child&) = delete;
   Child& operator=(const Child&) = delete;
 
-  // Everything the child writes, until it closes the pipe; polls the current progress meanwhile.
-  std::string read_all() {
-    std::string bytes;
+  // Everything the child writes, until it closes the pipe; polls the current progress meanwhile. False when the
+  // time limit passed first (the child is still running; the destructor kills it).
+  bool read_all(std::string& bytes, double seconds) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
     char buffer[1 << 16];
     for (;;) {
       poll_progress();
+      if (std::chrono::steady_clock::now() > deadline) return false;
       pollfd p{fd_, POLLIN, 0};
       const int ready = ::poll(&p, 1, kPollMilliseconds);
       if (ready < 0 && errno != EINTR) throw std::runtime_error(std::string("reader process: poll: ") + std::strerror(errno));
@@ -128,7 +147,7 @@ class Child {
       const ssize_t n = ::read(fd_, buffer, sizeof buffer);
       if (n < 0 && errno == EINTR) continue;
       if (n < 0) throw std::runtime_error(std::string("reader process: read: ") + std::strerror(errno));
-      if (n == 0) return bytes;
+      if (n == 0) return true;
       bytes.append(buffer, static_cast<std::size_t>(n));
     }
   }
@@ -149,8 +168,13 @@ class Child {
 
 }  // namespace
 
+double reader_time_limit_seconds(std::size_t input_bytes) {
+  const double fixed = seconds_from_environment();
+  return fixed > 0 ? fixed : kBaseSeconds + kSecondsPerMegabyte * static_cast<double>(input_bytes) / 1e6;
+}
+
 std::string run_in_child(const std::function<std::string()>& work, const std::string& field, const std::string& input,
-                         const std::string& reader) {
+                         const std::string& reader, std::size_t input_bytes) {
   const rlim_t address_space = child_address_space();
   const pid_t parent = ::getpid();
   int fds[2];
@@ -168,7 +192,16 @@ std::string run_in_child(const std::function<std::string()>& work, const std::st
   }
   ::close(fds[1]);
   Child child(pid, fds[0]);
-  const std::string bytes = child.read_all();
+  std::string bytes;
+  const double seconds = reader_time_limit_seconds(input_bytes);
+  if (!child.read_all(bytes, seconds)) {
+    std::ostringstream limit;
+    limit << seconds;
+    fail_input(field, "OpenCASCADE's " + reader + " was still reading " + input + " after " + limit.str() +
+                          " s (in a reader process of its own, now stopped): it is corrupt and the reader loops on "
+                          "it, or it is larger than the limit allows; for a large valid file, set "
+                          "STEADY_READER_SECONDS to more seconds");
+  }
   const int status = child.wait();
   if (WIFSIGNALED(status))
     fail_input(field, input + " crashed OpenCASCADE's " + reader + " (" + signal_name(WTERMSIG(status)) +

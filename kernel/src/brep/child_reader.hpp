@@ -6,6 +6,7 @@
 // child.
 #include <TopoDS_Shape.hxx>
 
+#include <cstddef>
 #include <functional>
 #include <string>
 
@@ -18,10 +19,15 @@ namespace steady {
 // A refusal thrown in the child (InvalidInput, ResourceLimit) is thrown again here with its message. A child
 // killed by a signal gives InvalidInput naming `field`: `input` crashed OpenCASCADE's `reader`. While it waits,
 // the current progress is polled every 50 ms: on a cancel the child is killed (SIGKILL) and Cancelled thrown.
+// A child still running after reader_time_limit_seconds(input_bytes) is killed, and InvalidInput names `field`.
 // `work` must not use TBB (the parent's worker threads do not exist in the child); OpenCASCADE's readers and
 // sequential checks do not.
 std::string run_in_child(const std::function<std::string()>& work, const std::string& field, const std::string& input,
-                         const std::string& reader);
+                         const std::string& reader, std::size_t input_bytes);
+
+// How long a reader process may run on an input of `input_bytes`: STEADY_READER_SECONDS when set to a positive
+// number, else 120 s plus 30 s per MB.
+double reader_time_limit_seconds(std::size_t input_bytes);
 
 // OpenCASCADE's binary B-rep (BinTools): exact, and written by OpenCASCADE, so safe to read back in the parent.
 std::string shape_to_binary(const TopoDS_Shape& shape);

@@ -18,6 +18,7 @@
 
 #include "steady/brep/brep_io.hpp"
 #include "steady/core/errors.hpp"
+#include "brep/canonical_order.hpp"
 #include "brep/occ_progress.hpp"
 
 namespace steady {
@@ -67,6 +68,9 @@ Skin make_skin(const SolidBody& body, double thickness, Progress& progress) {
   int shells = 0;
   for (TopExp_Explorer x(offset, TopAbs_SHELL); x.More(); x.Next(), ++shells) inner_shell = TopoDS::Shell(x.Current());
   if (shells != 1) too_thick(thickness, "the inward offset has " + std::to_string(shells) + " shells");
+  // BRepOffset orders its faces and edges by memory address: put them in an order of their geometry, so that the
+  // Booleans against the inner wall, and the files, come out the same each time.
+  inner_shell = in_canonical_order(inner_shell);
   const BRep_Builder b;
   b.MakeSolid(out.inner);
   b.Add(out.inner, inner_shell);

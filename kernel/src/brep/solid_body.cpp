@@ -13,6 +13,7 @@
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Simple_cartesian.h>
 #include <Poly_Triangulation.hxx>
+#include <Standard_Failure.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
@@ -22,6 +23,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <sstream>
 #include <vector>
@@ -56,9 +59,22 @@ int free_edge_count(const TopoDS_Shape& solid) {
 struct SolidBody::Tree {
   std::vector<Triangle> triangles;
   steady::Tree tree;
+  std::mutex classifier_mutex;  // the classifier keeps the state of its last point
+  std::unique_ptr<BRepClass3d_SolidClassifier> classifier;  // made on the first classification
 };
 
 SolidBody::SolidBody(const TopoDS_Shape& shape, const std::string& field) {
+  // A body that passed the checks can still make OpenCASCADE throw while it is prepared (meshed, measured,
+  // classified): that is a body it cannot work with, said as such, not an internal error.
+  try {
+    prepare(shape, field);
+  } catch (const Standard_Failure& e) {
+    fail_input(field, std::string("could not be prepared by OpenCASCADE (") + e.DynamicType()->Name() + ": " +
+                          e.GetMessageString() + "): repair the shape, e.g. FreeCAD's Part > Check geometry");
+  }
+}
+
+void SolidBody::prepare(const TopoDS_Shape& shape, const std::string& field) {
   if (shape.IsNull()) fail_input(field, "is empty");
   int solids = 0;
   for (TopExp_Explorer x(shape, TopAbs_SOLID); x.More(); x.Next(), ++solids) solid_ = TopoDS::Solid(x.Current());
@@ -119,16 +135,52 @@ SolidBody::SolidBody(const TopoDS_Shape& shape, const std::string& field) {
   tree_->tree.insert(tree_->triangles.cbegin(), tree_->triangles.cend());
   tree_->tree.build();
   tree_->tree.accelerate_distance_queries();
-  // Points well outside the bounding box must be outside. A shell whose wires name the wrong edges can pass
-  // BRepCheck and still classify such points inside (found by fuzz_body_step: one edge reference changed, volume
-  // halved, "valid"); trimming against it would keep nodes far from the body.
+  check_classifier_consistent(field);
+}
+
+bool SolidBody::classifier_says_inside(const Vec3& p) const {
+  // Loaded once: BRepClass3d_SolidClassifier's constructor prepares the solid (a box tree of its faces), which
+  // took most of the time of each point's classification on a body of thousands of faces.
+  const std::lock_guard<std::mutex> lock(tree_->classifier_mutex);
+  if (!tree_->classifier) tree_->classifier = std::make_unique<BRepClass3d_SolidClassifier>(solid_);
+  tree_->classifier->Perform(gp_Pnt(p.x, p.y, p.z), 1e-7);
+  return tree_->classifier->State() != TopAbs_OUT;
+}
+
+void SolidBody::check_classifier_consistent(const std::string& field) const {
+  // A shell whose wires name the wrong edges can pass BRepCheck and still be classified wrongly (found by
+  // fuzz_body_step: one edge reference changed, volume halved, "valid"; and by fuzz_body_brep in CI); trimming
+  // against it would keep nodes far from the body. OpenCASCADE's classifier is compared with what the
+  // triangulation says, an independent reading of the same faces: outside the bounding box nothing is inside, and
+  // at the points of a 4 x 4 x 4 grid in the box clear of the surface, the parity of a ray's crossings with the
+  // triangles (three rays in directions no face is likely to be parallel to; a point whose rays disagree, by
+  // passing through an edge of the triangulation, is not judged) must be the classifier's answer.
+  const std::string refusal =
+      "is not a consistent solid: OpenCASCADE classifies a point %s that its faces put %s (its faces' wires or "
+      "orientations contradict each other; repair the shape, e.g. FreeCAD's Part > Check geometry)";
+  auto fail = [&](const char* classified, const char* geometric) {
+    std::string text = refusal;
+    text.replace(text.find("%s"), 2, classified);
+    text.replace(text.find("%s"), 2, geometric);
+    fail_input(field, text);
+  };
   const Vec3 mid = 0.5 * (bounds_.lo + bounds_.hi), half = 0.5 * (bounds_.hi - bounds_.lo) + Vec3(0.1 * size());
   for (int corner = 0; corner < 8; ++corner) {
     const Vec3 p = mid + Vec3(corner & 1 ? 1.0 : -1.0, corner & 2 ? 1.0 : -1.0, corner & 4 ? 1.0 : -1.0) * half;
-    if (contains(p))
-      fail_input(field, "is not a consistent solid: a point outside its bounding box is classified inside (its faces' "
-                        "wires or orientations contradict each other; repair the shape, e.g. FreeCAD's Part > Check "
-                        "geometry)");
+    if (classifier_says_inside(p)) fail("inside", "outside its bounding box");
+  }
+  const Kernel::Vector_3 directions[3] = {{0.5773, 0.6154, 0.5364}, {-0.8017, 0.1936, 0.5654}, {0.2135, -0.9311, 0.2958}};
+  constexpr int kGrid = 4;
+  for (int i = 0; i < kGrid * kGrid * kGrid; ++i) {
+    const Vec3 f((i % kGrid + 0.5) / kGrid, (i / kGrid % kGrid + 0.5) / kGrid, (i / (kGrid * kGrid) + 0.5) / kGrid);
+    const Vec3 p = bounds_.lo + f * (bounds_.hi - bounds_.lo);
+    if (!(distance_lower_bound(p) > 0.0)) continue;  // within the triangulation's slack of the surface
+    int odd = 0;
+    for (const Kernel::Vector_3& d : directions)
+      odd += tree_->tree.number_of_intersected_primitives(Kernel::Ray_3(Kernel::Point_3(p.x, p.y, p.z), d)) % 2;
+    if (odd != 0 && odd != 3) continue;
+    const bool inside = odd == 3;
+    if (classifier_says_inside(p) != inside) fail(inside ? "outside" : "inside", inside ? "inside" : "outside");
   }
 }
 
@@ -171,9 +223,6 @@ std::vector<Vec3> SolidBody::nearest_points(const Vec3& p) const {
   return out;
 }
 
-bool SolidBody::contains(const Vec3& p) const {
-  BRepClass3d_SolidClassifier classifier(solid_, gp_Pnt(p.x, p.y, p.z), 1e-7);
-  return classifier.State() != TopAbs_OUT;
-}
+bool SolidBody::contains(const Vec3& p) const { return classifier_says_inside(p); }
 
 }  // namespace steady

@@ -2,7 +2,6 @@
 
 #include "steady/brep/brep_io.hpp"
 
-#include <APIHeaderSection_MakeHeader.hxx>
 #include <IFSelect_ReturnStatus.hxx>
 #include <Interface_Check.hxx>
 #include <Interface_CheckIterator.hxx>
@@ -12,8 +11,6 @@
 #include <Interface_Static.hxx>
 #include <Quantity_Color.hxx>
 #include <StepData_StepModel.hxx>
-#include <StepRepr_NextAssemblyUsageOccurrence.hxx>
-#include <TCollection_HAsciiString.hxx>
 #include <STEPCAFControl_Reader.hxx>
 #include <STEPCAFControl_Writer.hxx>
 #include <TDF_ChildIterator.hxx>
@@ -32,11 +29,13 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <mutex>
 #include <sstream>
 
 #include "brep/child_reader.hpp"
 #include "brep/occ_progress.hpp"
+#include "brep/step_reproducible.hpp"
 #include "steady/core/errors.hpp"
 
 namespace steady {
@@ -110,19 +109,6 @@ void collect(const Handle(XCAFDoc_ShapeTool)& shapes, const Handle(XCAFDoc_Color
                    colors->GetColor(label, XCAFDoc_ColorGen, c) || colors->GetColor(label, XCAFDoc_ColorSurf, c);
   if (part.has_color) part.color = {c.Red(), c.Green(), c.Blue()};
   out.push_back(part);
-}
-
-// The same part gives the same bytes whenever it is written, as the 3MF packages do (beam_lattice_3mf.cpp): a
-// fixed time stamp in the header's FILE_NAME (OpenCASCADE writes the time of writing), and the assembly's
-// occurrences numbered from 1 in each file (OpenCASCADE counts them over the process: '1' in the first file
-// written, '2' in the second).
-void make_reproducible(const Handle(StepData_StepModel)& model) {
-  APIHeaderSection_MakeHeader header(model);
-  if (header.HasFn()) header.SetTimeStamp(new TCollection_HAsciiString("2020-01-01T00:00:00"));
-  int occurrence = 0;
-  for (int i = 1; i <= model->NbEntities(); ++i)
-    if (auto usage = Handle(StepRepr_NextAssemblyUsageOccurrence)::DownCast(model->Value(i)))
-      usage->SetId(new TCollection_HAsciiString(++occurrence));
 }
 
 }  // namespace
@@ -301,8 +287,10 @@ std::vector<StepPart> parts_from_bytes(const std::string& bytes) {
 std::vector<StepPart> read_step_parts(const std::string& path) {
   // Held around the fork: the reader process inherits it held by its only thread, and reads without taking it.
   std::lock_guard<std::mutex> lock(xcaf_mutex());
-  return parts_from_bytes(
-      run_in_child([&] { return parts_to_bytes(read_step_here(path)); }, "path", "'" + path + "'", "STEP reader"));
+  std::error_code missing;  // a missing file is refused by the reader, with its own message
+  const std::uintmax_t size = std::filesystem::file_size(path, missing);
+  return parts_from_bytes(run_in_child([&] { return parts_to_bytes(read_step_here(path)); }, "path", "'" + path + "'",
+                                       "STEP reader", missing ? 0 : static_cast<std::size_t>(size)));
 }
 
 }  // namespace steady

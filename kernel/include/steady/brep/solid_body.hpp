@@ -50,6 +50,11 @@ class SolidBody {
   bool contains(const Vec3& p) const;
 
  private:
+  void prepare(const TopoDS_Shape& shape, const std::string& field);
+  bool classifier_says_inside(const Vec3& p) const;
+  // InvalidInput naming `field` when the classifier contradicts the body's own faces (see the definition).
+  void check_classifier_consistent(const std::string& field) const;
+
   struct Tree;
   TopoDS_Solid solid_;
   Box bounds_;
