@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
 #include <cstdio>
 #include <random>
 
@@ -12,6 +15,7 @@
 #include "test_support.hpp"
 #include "steady/properties/similar_copies.hpp"
 #include "steady/properties/lattice_properties.hpp"
+#include "steady/lattice/lattice_io.hpp"
 #include "steady/properties/similar_copies.hpp"
 #include "brick_definition.hpp"
 #include "steady/core/constants.hpp"
@@ -108,6 +112,23 @@ TEST(LatticeProperties, ABallMayCrossTheMidPlaneOfABeamItLeavesBeforeIt) {
   const double cap = kPi * (2.0 / 3.0 * R * R * R - R * R * x0 + x0 * x0 * x0 / 3.0);
   const double exact = n * slab + (n - 1) * kPi * r * r * (1.0 - 2.0 * x0) + 2.0 * cap;
   EXPECT_NEAR(fast.volume, exact, 1e-12 * exact);
+}
+
+TEST(LatticeProperties, APatternWhoseBeamsAreAllOmittedDoesNotEnterTheSums) {
+  // Found by fuzz_lattice_queries' 30-minute run: two groups, the first node of group 0 omitted, and a pattern from
+  // node 0 to node 0 of the previous group, so that its only beam ends at the omitted node. A dilation step puts
+  // the two ends 0.05 apart with end radii 0.12 and 0.05: one end ball holds the other, a beam that cannot be. The
+  // brute force over the listed beams summed the lattice, the row sums refused it ("beams[3]: one end ball of a
+  // beam contains the other"), though it has no such beam.
+  std::ifstream in(std::string(STEADY_TEST_DATA) + "/fuzz/lattice_pattern_whose_beams_are_all_omitted.json");
+  std::stringstream text;
+  text << in.rdbuf();
+  const Lattice lat = lattice_from_json(text.str());
+  ASSERT_EQ(lat.pattern_count(), 5);
+  std::int64_t beams_of_pattern_3 = 0;
+  lat.for_each_beam([&](std::int64_t, const BeamId& id, const BeamGeometry&) { beams_of_pattern_3 += id.pattern == 3; });
+  EXPECT_EQ(beams_of_pattern_3, 0);
+  EXPECT_TRUE(compare(lat, "pattern whose beams are all omitted", 0));
 }
 
 TEST(LatticeProperties, TranslationalLatticesNeedOnlyBorderShapes) {

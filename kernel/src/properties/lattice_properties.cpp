@@ -41,6 +41,7 @@ MassMoments ball_sum(const Context& c) {
 // ---- beams ------------------------------------------------------------------------------------------
 
 MassMoments pattern_sum(const Context& c, int p) {
+  if (c.absent[p]) return {};
   const BeamPattern& b = c.def.beams[p];
   const Counts& n = c.counts;
   const IndexBlock starts = pattern_start_groups(n, b);

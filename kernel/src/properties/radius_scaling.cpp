@@ -161,6 +161,7 @@ void RadiusScaledVolume::Model::build_from_sums() {
     if (ra != rb) m.max_scale = std::min(m.max_scale, L / std::abs(ra - rb));
   };
   for (int p = 0; p < lattice.pattern_count(); ++p) {
+    if (c.absent[p]) continue;  // no beam of it in the lattice (patterns_without_beams)
     const BeamPattern& b = def.beams[p];
     const IndexBlock starts = pattern_start_groups(n, b);
     const IndexRange ri = range_i(starts), rj = range_j(starts), rk = range_k(starts);
