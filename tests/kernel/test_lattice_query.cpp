@@ -6,6 +6,9 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
 #include <random>
 
 #include "query_oracle.hpp"
@@ -13,6 +16,7 @@
 #include "steady/core/errors.hpp"
 #include "steady/query/interference.hpp"
 #include "steady/query/lattice_query.hpp"
+#include "steady/lattice/lattice_io.hpp"
 
 namespace steady {
 namespace {
@@ -118,6 +122,31 @@ TEST(LatticeQuery, AllPathsMatchBruteForceOnBenchmarkClasses) {
                 rng, 1500, t, "near identity");
   EXPECT_EQ(t.mismatches, 0);
   std::printf("[ lattice ] %ld benchmark-class queries, %ld hits, %ld mismatches\n", t.queries, t.hits, t.mismatches);
+}
+
+TEST(LatticeQuery, AStepTooSteepForTheFastPathsTablesLeavesTheNaivePath) {
+  // Found by fuzz_lattice_json's short run: a dilation of 150 a step over 4 groups and a pattern offset of 9 (no
+  // beam of it in the lattice). The fast paths tabulate U^i up to 9 groups beyond the lattice, where U^12 is out
+  // of the numerical range, and LatticeQuery refused the lattice (ValueError: "similarity: its translation: is
+  // 6.9e+18, beyond the supported range") though every element of it is in range. The naive path answers, and the
+  // plan says why.
+  std::ifstream in(std::string(STEADY_TEST_DATA) + "/fuzz/lattice_steep_dilation_far_pattern.json");
+  std::stringstream text;
+  text << in.rdbuf();
+  const Lattice lat = lattice_from_json(text.str());
+  const LatticeQuery lq(lat);
+  EXPECT_EQ(lq.plan().automatic, QueryMethod::Naive);
+  EXPECT_NE(lq.plan().steady_reason.find("out of range"), std::string::npos) << lq.plan().steady_reason;
+  EXPECT_THROW(lq.query_ball({Vec3(0.0), 0.0}, QueryMethod::Blocks), InvalidInput);  // says why it does not apply
+  const test::BruteForceQuery brute_force(lat);
+  std::mt19937_64 rng(7);
+  for (const Ball& q : sample_queries(lat, lq, rng, 40)) {
+    const BallQueryResult truth = brute_force(q), r = lq.query_ball(q);
+    EXPECT_EQ(r.balls, truth.balls);
+    EXPECT_EQ(r.beams, truth.beams);
+  }
+  const Ball first = lat.ball(lat.ball_id(0));
+  EXPECT_EQ(lq.query_ball({first.center, 0.0}).balls.front(), 0);
 }
 
 TEST(LatticeQuery, LongFuzz) {

@@ -76,14 +76,36 @@ QueryState::QueryState(const Lattice& lat) : lattice(lat), eval(lat, largest_off
     bounds.emplace(lat, margin);
     bound = bounds->lattice_bound();
     length_scale = glm::length(bound.center) + bound.radius;
-    prepare_brick_paths();
+    try {
+      prepare_brick_paths();
+    } catch (const InvalidInput& e) {
+      // The fast paths tabulate the steps' powers over the lattice's groups and a margin beyond them, as far as
+      // a pattern's far end can reach. A steep dilation can take such a power, for a group that does not exist,
+      // out of the numerical range (found by fuzz_lattice_json: a scale of 150 a step and a pattern offset of 9
+      // on 4 groups); every element of the lattice is in range, so the naive path answers (a small lattice).
+      only_naive("a power of the steps that the fast paths tabulate beyond the lattice's groups is out of range (" +
+                 std::string(e.what()) + ")");
+    }
   } else {
     bound = bound_of_balls(lat);
     length_scale = glm::length(bound.center) + bound.radius;
-    plan.steady_reason = "the lattice's layout (" + lat.layout().kind() + ") is not a steady brick";
-    plan.slabs_reason = plan.constant_reason = plan.steady_reason;
-    plan.automatic = QueryMethod::Naive;
+    only_naive("the lattice's layout (" + lat.layout().kind() + ") is not a steady brick");
   }
+}
+
+void QueryState::only_naive(const std::string& reason) {
+  bounds.reset();
+  u_nodes.clear();
+  u_scales.clear();
+  prefix_offsets.clear();
+  pattern_prefix.clear();
+  slab_prefixes.clear();
+  first_templates = {};
+  constant_extents.clear();
+  plan = {};
+  plan.steady_reason = reason;
+  plan.slabs_reason = plan.constant_reason = plan.steady_reason;
+  plan.automatic = QueryMethod::Naive;
 }
 
 void QueryState::prepare_brick_paths() {

@@ -68,6 +68,8 @@ struct QueryState {
 
   explicit QueryState(const Lattice& lattice);
   void prepare_brick_paths();
+  // Leaves only the naive path, with `reason` in the plan (block_bounds and forced methods refuse with it).
+  void only_naive(const std::string& reason);
   // The inflated radius used for ranges and bounds (kQueryInflation, kQueryInflationPerStep).
   double inflation(const Ball& query) const;
 };
