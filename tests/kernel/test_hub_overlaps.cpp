@@ -2,10 +2,14 @@
 // all-hubs check, touching pieces (not overlaps), and properties refusing a non-clean lattice.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <random>
+#include <sstream>
+#include <string>
 
 #include "lattice_test_shapes.hpp"
 #include "steady/query/hub_overlaps.hpp"
+#include "steady/lattice/lattice_io.hpp"
 #include "hub_test_shapes.hpp"
 #include "steady/core/errors.hpp"
 #include "steady/lattice/hub.hpp"
@@ -110,6 +114,21 @@ TEST(HubOverlaps, SlabWindowCountsLikeTheAllHubsCheck) {
   const Lattice dirty = bent_bcc(0.08, 1.05, Counts{3, 2, 9});
   EXPECT_EQ(check_hub_overlaps(dirty, 10, no_progress(), HubOverlapCheckMethod::SlabWindow).overlap_count,
             check_hub_overlaps(dirty, 10, no_progress(), HubOverlapCheckMethod::AllHubs).overlap_count);
+}
+
+TEST(HubOverlaps, HubsOfVeryDifferentSizesKeepTheGridSmall) {
+  // A dilation of 150 a step gives hubs from 0.1 to 1e7 in one lattice. The broad phase's grid had cells of the
+  // median reach, so the largest hub covered some 1e20 cells: properties() took 24 GB in 10 s and the process was
+  // killed for lack of memory. The cells now grow until the hubs cover few of them; the pairs are the brute force's.
+  std::ifstream in(std::string(STEADY_TEST_DATA) + "/fuzz/lattice_steep_dilation_far_pattern.json");
+  std::stringstream text;
+  text << in.rdbuf();
+  const Lattice lat = lattice_from_json(text.str());
+  const HubOverlapReport fast = check_hub_overlaps(lat, 1000), brute = check_hub_overlaps_brute_force(lat, 1000);
+  EXPECT_TRUE(fast.verified);
+  EXPECT_GT(fast.overlap_count, 100);
+  EXPECT_EQ(fast.overlap_count, brute.overlap_count);
+  EXPECT_THROW(lattice_properties(lat, LatticePropertiesOptions{{}, true, false}), InvalidInput);  // not clean, named
 }
 
 TEST(HubOverlaps, TouchingIsNotOverlapping) {

@@ -183,7 +183,23 @@ void check_hubs(const std::vector<HubPieces>& a, const std::vector<HubPieces>& b
   std::vector<double> reaches;
   for (const HubPieces& h : b) reaches.push_back(h.reach);
   std::nth_element(reaches.begin(), reaches.begin() + reaches.size() / 2, reaches.end());
-  const double cell = 2.0 * std::max(reaches[reaches.size() / 2], 1e-300);
+  double cell = 2.0 * std::max(reaches[reaches.size() / 2], 1e-300);
+  // A hub covers (2 reach / cell + 1)^3 cells. With reaches far apart (a dilation of 150 a step: balls of 0.1 and
+  // of 1e7 in one lattice) the median's cells made one hub cover some 1e20 of them, and the process ran out of
+  // memory in seconds (found with fuzz_lattice_json's input of a steep dilation). The cells grow until the hubs of
+  // both sets cover at most 64 cells each on average: the grid is only the broad phase, so the pairs are the same.
+  auto cells_covered = [&](double size) {
+    double total = 0.0;
+    for (const std::vector<HubPieces>* set : {&a, &b})
+      for (const HubPieces& h : *set) {
+        double cells = 1.0;
+        for (int axis = 0; axis < 3; ++axis)
+          cells *= std::floor((h.center[axis] + h.reach) / size) - std::floor((h.center[axis] - h.reach) / size) + 1.0;
+        total += cells;
+      }
+    return total;
+  };
+  while (cells_covered(cell) > 64.0 * static_cast<double>(a.size() + b.size()) && std::isfinite(cell)) cell *= 2.0;
   auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
     return (static_cast<std::uint64_t>(x) * 73856093u) ^ (static_cast<std::uint64_t>(y) * 19349663u) ^
            (static_cast<std::uint64_t>(z) * 83492791u);
