@@ -3,11 +3,22 @@
 // and the largest round-trip error seen (printed at the end of a run for the issue notes).
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <random>
+#include <sstream>
+#include <string>
 
 #include "steady/core/similarity.hpp"
 
 namespace steady::test {
+
+// The bytes of a file, read whole ("" when it cannot be read: the test's expectations on it then fail).
+inline std::string file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
 
 // The largest absolute entry of a matrix (relative comparisons of inertia tensors).
 inline double max_abs(const Mat3& m) {

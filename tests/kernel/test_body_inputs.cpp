@@ -9,7 +9,6 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -17,6 +16,7 @@
 
 #include <unistd.h>
 
+#include "test_support.hpp"
 #include "brep/child_reader.hpp"
 #include "steady/brep/brep_io.hpp"
 #include "steady/brep/solid_body.hpp"
@@ -28,12 +28,7 @@
 namespace steady {
 namespace {
 
-std::string read_data(const std::string& name) {
-  std::ifstream in(std::string(STEADY_TEST_DATA) + "/" + name, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+std::string read_data(const std::string& name) { return test::file_bytes(std::string(STEADY_TEST_DATA) + "/" + name); }
 
 // The message of the InvalidInput `call` throws, or a failure.
 template <class F>

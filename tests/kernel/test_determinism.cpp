@@ -18,9 +18,7 @@
 
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -33,16 +31,10 @@
 #include "steady/mesh/lattice_mesh.hpp"
 #include "steady/mesh/mesh_files.hpp"
 #include "steady/properties/lattice_properties.hpp"
+#include "test_support.hpp"
 
 namespace steady {
 namespace {
-
-std::string file_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
-}
 
 template <class T>
 std::string raw_bytes(const T* data, std::size_t count) {
@@ -63,18 +55,18 @@ std::map<std::string, std::string> outputs_on(int threads, const Lattice& lattic
     request.trim.skin = 0.3;
     out["part brep"] = lattice_part_brep(flat, request);
     write_lattice_step(dir + ".step", flat, request);
-    out["part step"] = file_bytes(dir + ".step");
+    out["part step"] = test::file_bytes(dir + ".step");
     const TriangleMesh mesh = lattice_mesh(flat, MeshOptions{0.02});
     out["mesh vertices"] = raw_bytes(mesh.vertices.data(), mesh.vertices.size());
     out["mesh triangles"] = raw_bytes(mesh.triangles.data(), mesh.triangles.size());
     write_stl(mesh, dir + ".stl");
-    out["stl"] = file_bytes(dir + ".stl");
+    out["stl"] = test::file_bytes(dir + ".stl");
     write_3mf(mesh, dir + ".3mf");
-    out["3mf"] = file_bytes(dir + ".3mf");
+    out["3mf"] = test::file_bytes(dir + ".3mf");
     BeamLatticeOptions beams;
     beams.representation = &mesh;
     write_3mf_beam_lattice(flat, dir + "_beams.3mf", beams);
-    out["3mf beam lattice"] = file_bytes(dir + "_beams.3mf");
+    out["3mf beam lattice"] = test::file_bytes(dir + "_beams.3mf");
     const LatticeProperties p = lattice_properties(lattice);
     const double numbers[] = {p.volume,        p.area,          p.centroid.x,    p.centroid.y,    p.centroid.z,
                               p.inertia[0][0], p.inertia[1][1], p.inertia[2][2], p.inertia[0][1], p.inertia[1][2]};

@@ -2,11 +2,10 @@
 // all-hubs check, touching pieces (not overlaps), and properties refusing a non-clean lattice.
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <random>
-#include <sstream>
 #include <string>
 
+#include "test_support.hpp"
 #include "lattice_test_shapes.hpp"
 #include "steady/query/hub_overlaps.hpp"
 #include "steady/lattice/lattice_io.hpp"
@@ -120,10 +119,7 @@ TEST(HubOverlaps, HubsOfVeryDifferentSizesKeepTheGridSmall) {
   // A dilation of 150 a step gives hubs from 0.1 to 1e7 in one lattice. The broad phase's grid had cells of the
   // median reach, so the largest hub covered some 1e20 cells: properties() took 24 GB in 10 s and the process was
   // killed for lack of memory. The cells now grow until the hubs cover few of them; the pairs are the brute force's.
-  std::ifstream in(std::string(STEADY_TEST_DATA) + "/fuzz/lattice_steep_dilation_far_pattern.json");
-  std::stringstream text;
-  text << in.rdbuf();
-  const Lattice lat = lattice_from_json(text.str());
+  const Lattice lat = lattice_from_json(test::file_bytes(std::string(STEADY_TEST_DATA) + "/fuzz/lattice_steep_dilation_far_pattern.json"));
   const HubOverlapReport fast = check_hub_overlaps(lat, 1000), brute = check_hub_overlaps_brute_force(lat, 1000);
   EXPECT_TRUE(fast.verified);
   EXPECT_GT(fast.overlap_count, 100);

@@ -4,8 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <cstdio>
 #include <random>
@@ -120,10 +118,7 @@ TEST(LatticeProperties, APatternWhoseBeamsAreAllOmittedDoesNotEnterTheSums) {
   // the two ends 0.05 apart with end radii 0.12 and 0.05: one end ball holds the other, a beam that cannot be. The
   // brute force over the listed beams summed the lattice, the row sums refused it ("beams[3]: one end ball of a
   // beam contains the other"), though it has no such beam.
-  std::ifstream in(std::string(STEADY_TEST_DATA) + "/fuzz/lattice_pattern_whose_beams_are_all_omitted.json");
-  std::stringstream text;
-  text << in.rdbuf();
-  const Lattice lat = lattice_from_json(text.str());
+  const Lattice lat = lattice_from_json(test::file_bytes(std::string(STEADY_TEST_DATA) + "/fuzz/lattice_pattern_whose_beams_are_all_omitted.json"));
   ASSERT_EQ(lat.pattern_count(), 5);
   std::int64_t beams_of_pattern_3 = 0;
   lat.for_each_beam([&](std::int64_t, const BeamId& id, const BeamGeometry&) { beams_of_pattern_3 += id.pattern == 3; });

@@ -6,11 +6,10 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <random>
 
+#include "test_support.hpp"
 #include "query_oracle.hpp"
 #include "sample_lattices.hpp"
 #include "steady/core/errors.hpp"
@@ -130,10 +129,7 @@ TEST(LatticeQuery, AStepTooSteepForTheFastPathsTablesLeavesTheNaivePath) {
   // of the numerical range, and LatticeQuery refused the lattice (ValueError: "similarity: its translation: is
   // 6.9e+18, beyond the supported range") though every element of it is in range. The naive path answers, and the
   // plan says why.
-  std::ifstream in(std::string(STEADY_TEST_DATA) + "/fuzz/lattice_steep_dilation_far_pattern.json");
-  std::stringstream text;
-  text << in.rdbuf();
-  const Lattice lat = lattice_from_json(text.str());
+  const Lattice lat = lattice_from_json(test::file_bytes(std::string(STEADY_TEST_DATA) + "/fuzz/lattice_steep_dilation_far_pattern.json"));
   const LatticeQuery lq(lat);
   EXPECT_EQ(lq.plan().automatic, QueryMethod::Naive);
   EXPECT_NE(lq.plan().steady_reason.find("out of range"), std::string::npos) << lq.plan().steady_reason;

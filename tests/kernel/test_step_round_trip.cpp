@@ -25,13 +25,12 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <thread>
 
 #include <unistd.h>
 
+#include "test_support.hpp"
 #include "brep/pcurve_pieces.hpp"
 #include "steady/brep/brep_io.hpp"
 #include "steady/brep/lattice_part.hpp"
@@ -44,12 +43,7 @@
 namespace steady {
 namespace {
 
-std::string read_data(const std::string& name) {
-  std::ifstream in(std::string(STEADY_TEST_DATA) + "/" + name);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+std::string read_data(const std::string& name) { return test::file_bytes(std::string(STEADY_TEST_DATA) + "/" + name); }
 
 // Volume by adaptive integration: the default Gauss rule is off by up to 2e-3 on a sphere face with 12 holes
 // (the same face, laid out in two frames, measured 3.6479 and 3.6391), too coarse to compare two files.
@@ -212,12 +206,6 @@ TEST(StepRoundTrip, SkinnedAssemblyInATiltedCylinderComesBackValid) {
   std::remove(path.c_str());
 }
 
-std::string file_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
-}
 
 // The same part gives the same bytes whenever it is written: OpenCASCADE put the time of writing in the header.
 TEST(StepRoundTrip, TheSamePartWrittenTwiceGivesTheSameBytes) {
@@ -226,7 +214,7 @@ TEST(StepRoundTrip, TheSamePartWrittenTwiceGivesTheSameBytes) {
   write_step_assembly(a, {{"Box", box}});
   std::this_thread::sleep_for(std::chrono::milliseconds(1100));  // the header's time stamp counts seconds
   write_step_assembly(b, {{"Box", box}});
-  const std::string first = file_bytes(a), second = file_bytes(b);
+  const std::string first = test::file_bytes(a), second = test::file_bytes(b);
   EXPECT_FALSE(first.empty());
   EXPECT_EQ(first, second) << "the STEP header differs between two writes";
   std::remove(a.c_str());

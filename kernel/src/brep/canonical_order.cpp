@@ -27,7 +27,7 @@ using Key = std::array<double, 5>;
 
 double rounded(double value, double quantum) { return std::round(value / quantum); }
 
-// An edge's key: its orientation, and the point at the middle of its range (a vertex for a degenerate edge).
+// An edge's key: the point at the middle of its range (a vertex for a degenerate edge), then its orientation.
 Key edge_key(const TopoDS_Edge& edge, double quantum) {
   gp_Pnt p;
   if (BRep_Tool::Degenerated(edge)) {
@@ -39,7 +39,7 @@ Key edge_key(const TopoDS_Edge& edge, double quantum) {
   return {rounded(p.X(), quantum), rounded(p.Y(), quantum), rounded(p.Z(), quantum), double(edge.Orientation()), 0.0};
 }
 
-// A face's (or a wire's, with `area` 0) key: surface type, centre of mass of its edges' or its own area, area.
+// A face's key: surface type, centre of mass of its area, area.
 Key face_key(const TopoDS_Face& face, double quantum) {
   GProp_GProps props;
   BRepGProp::SurfaceProperties(face, props);
@@ -48,6 +48,7 @@ Key face_key(const TopoDS_Face& face, double quantum) {
           rounded(c.Y(), quantum), rounded(c.Z(), quantum), rounded(props.Mass(), quantum)};
 }
 
+// A wire's key: centre of mass of its edges, length, orientation.
 Key wire_key(const TopoDS_Wire& wire, double quantum) {
   GProp_GProps props;
   BRepGProp::LinearProperties(wire, props);
@@ -56,9 +57,8 @@ Key wire_key(const TopoDS_Wire& wire, double quantum) {
           double(wire.Orientation())};
 }
 
-// Children are taken with their orientation and location composed with their parent's (TopoDS_Iterator's
-// default) because BRep_Builder::Add composes them back relative to the new parent.
-
+// Below, children are taken with their orientation and location composed with their parent's (TopoDS_Iterator's
+// default), because BRep_Builder::Add composes them back relative to the new parent.
 // The wire's edges rotated to start at the least key; the cyclic order is the wire's own.
 TopoDS_Wire wire_in_order(const TopoDS_Wire& wire, double quantum) {
   std::vector<TopoDS_Shape> edges;
