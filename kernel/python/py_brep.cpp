@@ -90,6 +90,9 @@ void fill_stats(const steady::TrimStats& s, py::dict& d) {
   d["turned_clusters"] = s.turned_clusters;
   d["fuzzy_clusters"] = s.fuzzy_clusters;
   d["holed_clusters"] = s.holed_clusters;
+  d["rim_clusters"] = s.rim_clusters;
+  d["rim_clusters_unclipped"] = s.rim_clusters_unclipped;
+  d["rim_cut_reason"] = s.rim_cut_reason;
   d["core_hubs"] = s.core_hubs;
   d["distinct_cores"] = s.distinct_cores;
   d["fused_cores"] = s.fused_cores;
@@ -203,7 +206,7 @@ void bind_brep(py::module_& m) {
       "went: hubs inside/outside/crossing, band_clusters (local Booleans), moved_cuts (beams cut off their middle "
       "to keep clusters apart), retried_clusters and of those "
       "relaid_/turned_/fuzzy_clusters (fuzzy: clipped with a tolerance of 1e-4 to 1e-3 of the cluster's size, "
-      "exact only to that), holed_clusters (glued to the skin with no Boolean), relaid_out and union_through_pores "
+      "exact only to that), holed_clusters (glued to the skin with no Boolean), rim_clusters (on the inner boundary's edges and seams: united with the skin by one Cut) and of those rim_clusters_unclipped (found before their Common), relaid_out and union_through_pores "
       "with their reasons, with 'bridge' kept_hubs, lost_neighbour_hubs, bridges, blocked_bridges (refused: they would "
       "meet another kept element) and ambiguous_bridges (several nearest points), faces, volume (adaptive integration: FreeCAD's Shape.Volume can be 1e-3 off on crowded spheres), boolean_seconds, union_seconds. log: None or a callable log(message) receiving "
       "the trim's diagnostics as they happen (build times, failed attempts, a union through the pores). dump_dir: "

@@ -200,12 +200,14 @@ int child_scale(Counts c, bool check, double skin, double tilt) {
       {"seconds", t1 - t0}, {"beams", double(f.beam_count())}, {"faces", double(face_count(r.part))},
       {"classify", r.stats.classify_seconds}, {"build", r.stats.build_seconds}, {"boolean", r.stats.boolean_seconds},
       {"union", r.stats.union_seconds}, {"union_through_pores", double(r.stats.union_through_pores)},
-      {"holed_clusters", double(r.stats.holed_clusters)},
+      {"holed_clusters", double(r.stats.holed_clusters)}, {"rim_clusters", double(r.stats.rim_clusters)},
+      {"rim_clusters_unclipped", double(r.stats.rim_clusters_unclipped)},
       {"crossing", double(r.stats.crossing_hubs)}, {"relaid", double(r.stats.relaid_out)}, {"retried_clusters", double(r.stats.retried_clusters)},
       {"relaid_clusters", double(r.stats.relaid_clusters)}, {"turned_clusters", double(r.stats.turned_clusters)},
       {"fuzzy_clusters", double(r.stats.fuzzy_clusters)},
       {"clusters", double(r.stats.band_clusters)}, {"moved_cuts", double(r.stats.moved_cuts)},
       {"peak_mb", double(peak_rss_mb())}};
+  if (!r.stats.rim_cut_reason.empty()) std::fprintf(stderr, "rim clusters clipped after all: %s\n", r.stats.rim_cut_reason.c_str());
   if (!r.stats.pores_reason.empty()) std::fprintf(stderr, "through the pores: %s\n", r.stats.pores_reason.c_str());
   if (!r.stats.relaid_reason.empty()) std::fprintf(stderr, "laid out again: %s\n", r.stats.relaid_reason.c_str());
   if (check) {

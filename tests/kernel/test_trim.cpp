@@ -26,6 +26,7 @@
 #include "steady/core/errors.hpp"
 #include "steady/lattice/flat_lattice.hpp"
 #include "steady/lattice/lattice_io.hpp"
+#include "steady/lattice/presets.hpp"
 #include "steady/brep/lattice_part.hpp"
 #include "steady/core/progress.hpp"
 #include "steady/brep/step_assembly.hpp"
@@ -320,10 +321,13 @@ TEST(Trim, CurvedBodiesAndGradedLatticesAgreeWithMonteCarlo) {
       if (skin > 0) EXPECT_NEAR(shape_volume(r.skin) / (c.volume(0.0) - c.volume(skin)), 1.0, 1e-6) << what;
       EXPECT_FALSE(r.stats.union_through_pores) << what << ": the glued union with the skin failed its checks";
       // Both ways of gluing to the skin are in these parts (measured: 11 of 12 clusters by holes in the sphere,
-      // 7 of 9 in the cylinder; the others straddle the inner boundary's seams, poles or rims: glued Fuse).
+      // 7 of 9 in the cylinder; the others straddle the inner boundary's seams, poles or rims: clipped and glued by a
+      // Fuse, or, where they hold most of the band, one Cut of the inner body by them).
       if (skin > 0) {
         EXPECT_GT(r.stats.holed_clusters, 0) << what << ": no cluster glued to the skin by holes";
-        EXPECT_LT(r.stats.holed_clusters, r.stats.band_clusters) << what << ": no cluster through the glued Fuse";
+        EXPECT_GT(r.stats.rim_clusters, 0) << what << ": no cluster on the rims";
+        EXPECT_EQ(r.stats.holed_clusters + r.stats.rim_clusters, r.stats.band_clusters) << what;
+        EXPECT_LE(r.stats.rim_clusters_unclipped, r.stats.rim_clusters) << what;
       }
     }
   }
@@ -409,6 +413,46 @@ TEST(Trim, MainJobOctetClippedWithoutSkinAgreesWithMonteCarlo) {
               "moved, %lld retried; volume %.2f, Monte Carlo %.2f +- %.2f\n",
               (long long)r.stats.crossing_hubs, (long long)r.stats.band_clusters, (long long)r.stats.moved_cuts,
               (long long)r.stats.retried_clusters, shape_volume(r.part), frac * box, sigma);
+}
+
+TEST(Trim, DenseBandOnTheRimsUnitedByOneCutMatchesClippingIt) {
+  // A dense octet (beam/node 0.9) in a cylinder with a skin: no cut between two boundary hubs leaves room, so the
+  // band is one cluster, and it covers the inner boundary's rims. It is united with the skin by one Cut of the inner
+  // body, its Common never run (docs/brep.md, section 4); the slow twin clips it and glues it by a Fuse.
+  const double cell = 2.0, skin = 0.5;
+  const std::int64_t n = 3;
+  const FlatLattice f = flatten(preset_lattice("octet", {n, n, n}, cell, 0.4, 0.36));
+  const double cx = cell * n / 2.0, radius = 0.45 * cell * n, z0 = 0.3, height = cell * n - 0.6;
+  const TopoDS_Shape body = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(cx, cx, z0), gp_Dir(0, 0, 1)), radius, height).Shape();
+  TrimOptions o;
+  o.skin = skin;
+  const TrimResult cut = trim_lattice(f, body, o);
+  o.rim_cut = false;
+  const TrimResult clipped = trim_lattice(f, body, o);
+  expect_valid_single_solid(cut.part, "united by the rim Cut");
+  expect_valid_single_solid(clipped.part, "clipped and fused");
+  EXPECT_EQ(cut.stats.band_clusters, 1);
+  EXPECT_EQ(cut.stats.rim_clusters, 1);
+  EXPECT_EQ(cut.stats.rim_clusters_unclipped, 1) << "the rim cluster was clipped first";
+  EXPECT_TRUE(cut.stats.rim_cut_reason.empty()) << cut.stats.rim_cut_reason;
+  EXPECT_FALSE(cut.stats.union_through_pores) << cut.stats.pores_reason;
+  EXPECT_EQ(clipped.stats.rim_clusters, 1);
+  EXPECT_EQ(clipped.stats.rim_clusters_unclipped, 0);
+  EXPECT_NEAR(shape_volume(cut.part) / shape_volume(clipped.part), 1.0, 1e-9);
+  // Monte Carlo of the lattice inside the inner cylinder (radius and height less the skin), plus the skin exactly.
+  const double inner_radius = radius - skin, inner_lo = z0 + skin, inner_hi = z0 + height - skin;
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> ux(cx - inner_radius, cx + inner_radius), uz(inner_lo, inner_hi);
+  const int samples = 60000;
+  int hits = 0;
+  for (int k = 0; k < samples; ++k) {
+    const Vec3 p(ux(rng), ux(rng), uz(rng));
+    hits += std::hypot(p.x - cx, p.y - cx) <= inner_radius && in_lattice(f, p);
+  }
+  const double box = 4.0 * inner_radius * inner_radius * (inner_hi - inner_lo), frac = double(hits) / samples;
+  const double sigma = std::sqrt(frac * (1 - frac) / samples) * box;
+  const double skin_volume = M_PI * (radius * radius * height - inner_radius * inner_radius * (inner_hi - inner_lo));
+  EXPECT_NEAR(shape_volume(cut.part), skin_volume + frac * box, 4 * sigma);
 }
 
 TEST(Trim, BadInputGetsClearMessages) {

@@ -6,7 +6,8 @@
 // face's outline as a hole, and the cluster without its cut face: the section edges are then shared by the
 // skin and the lattice. A glued Fuse of the skin with thousands of clusters (one inner face taking thousands
 // of holes) took most of 11 minutes at 10^5 beams and gave an invalid part (measured); cutting holes is local.
-// Cut faces on the inner boundary's own edges or seams (a cluster straddling a rim) are left to the Fuse.
+// Cut faces on the inner boundary's own edges or seams (a cluster straddling a rim) are not holes: such clusters
+// are united with the skin through the pores (trim_skin_union.cpp).
 #include <BRepAlgoAPI_BooleanOperation.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS_Face.hxx>

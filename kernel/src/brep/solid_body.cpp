@@ -10,8 +10,10 @@
 #include <Bnd_Box.hxx>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_segment_primitive.h>
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Simple_cartesian.h>
+#include <Poly_PolygonOnTriangulation.hxx>
 #include <Poly_Triangulation.hxx>
 #include <Standard_Failure.hxx>
 #include <TopExp.hxx>
@@ -40,6 +42,9 @@ using Kernel = CGAL::Simple_cartesian<double>;
 using Triangle = Kernel::Triangle_3;
 using Primitive = CGAL::AABB_triangle_primitive<Kernel, std::vector<Triangle>::const_iterator>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
+using Segment = Kernel::Segment_3;
+using SegmentPrimitive = CGAL::AABB_segment_primitive<Kernel, std::vector<Segment>::const_iterator>;
+using SegmentTree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, SegmentPrimitive>>;
 
 // Edges bounding only one face (not seams, not degenerate): the shell is open there.
 int free_edge_count(const TopoDS_Shape& solid) {
@@ -59,6 +64,8 @@ int free_edge_count(const TopoDS_Shape& solid) {
 struct SolidBody::Tree {
   std::vector<Triangle> triangles;
   steady::Tree tree;
+  std::vector<Segment> edge_segments;  // the edges' polygons on the triangulation, and a short one at each vertex
+  SegmentTree edge_tree;
   std::mutex classifier_mutex;  // the classifier keeps the state of its last point
   std::unique_ptr<BRepClass3d_SolidClassifier> classifier;  // made on the first classification
 };
@@ -135,7 +142,36 @@ void SolidBody::prepare(const TopoDS_Shape& shape, const std::string& field) {
   tree_->tree.insert(tree_->triangles.cbegin(), tree_->triangles.cend());
   tree_->tree.build();
   tree_->tree.accelerate_distance_queries();
+  add_edge_segments();
   check_classifier_consistent(field);
+}
+
+void SolidBody::add_edge_segments() {
+  auto point = [](const gp_Pnt& p) { return Kernel::Point_3(p.X(), p.Y(), p.Z()); };
+  std::vector<Segment>& segments = tree_->edge_segments;
+  for (TopExp_Explorer x(solid_, TopAbs_FACE); x.More(); x.Next()) {
+    const TopoDS_Face& face = TopoDS::Face(x.Current());
+    TopLoc_Location loc;
+    const Handle(Poly_Triangulation) tri = BRep_Tool::Triangulation(face, loc);
+    const gp_Trsf t = loc.Transformation();
+    for (TopExp_Explorer e(face, TopAbs_EDGE); e.More(); e.Next()) {
+      const Handle(Poly_PolygonOnTriangulation)& polygon =
+          BRep_Tool::PolygonOnTriangulation(TopoDS::Edge(e.Current()), tri, loc);
+      if (polygon.IsNull()) continue;  // a degenerate edge: its vertex is added below
+      const TColStd_Array1OfInteger& nodes = polygon->Nodes();
+      for (int i = nodes.Lower(); i < nodes.Upper(); ++i)
+        segments.emplace_back(point(tri->Node(nodes(i)).Transformed(t)), point(tri->Node(nodes(i + 1)).Transformed(t)));
+    }
+  }
+  // Every vertex (the poles of degenerate edges among them), as a segment of the slack's length that starts there:
+  // the distance to it is a lower bound of the distance to the vertex.
+  for (TopExp_Explorer x(solid_, TopAbs_VERTEX); x.More(); x.Next()) {
+    const gp_Pnt p = BRep_Tool::Pnt(TopoDS::Vertex(x.Current()));
+    segments.emplace_back(point(p), point(p.Translated(gp_Vec(slack_, 0.0, 0.0))));
+  }
+  tree_->edge_tree.insert(segments.cbegin(), segments.cend());
+  tree_->edge_tree.build();
+  tree_->edge_tree.accelerate_distance_queries();
 }
 
 bool SolidBody::classifier_says_inside(const Vec3& p) const {
@@ -189,6 +225,12 @@ SolidBody::SolidBody(SolidBody&&) noexcept = default;
 
 double SolidBody::distance_lower_bound(const Vec3& p) const {
   const double d = std::sqrt(tree_->tree.squared_distance(Kernel::Point_3(p.x, p.y, p.z)));
+  return std::max(0.0, d - slack_);
+}
+
+double SolidBody::edge_distance_lower_bound(const Vec3& p) const {
+  if (tree_->edge_segments.empty()) return std::numeric_limits<double>::infinity();
+  const double d = std::sqrt(tree_->edge_tree.squared_distance(Kernel::Point_3(p.x, p.y, p.z)));
   return std::max(0.0, d - slack_);
 }
 

@@ -100,7 +100,10 @@ std::vector<TopoDS_Face> band_part(const ClipContext& c, BuiltHubs& built, SeamP
   BrepPieces second_layout;  // the failed clusters' pieces laid out the other way: alive until the faces are kept
   retry_failed_clusters(c, seams, built.cuts, clips, disks, second_layout, stats, progress);
   const auto clock = std::chrono::steady_clock::now();
-  UnionContext u{c, clips, disks, built.interior.faces, union_progress, weights.skin_union, weights.verify};
+  BrepPieces rim_second_layout;  // likewise for the rim clusters, should they be clipped after all
+  UnionContext u{c, clips, disks, built.interior.faces, union_progress, weights.skin_union, weights.verify, [&] {
+                   clip_rim_clusters(c, seams, built.cuts, clips, disks, rim_second_layout, stats, progress);
+                 }};
   std::vector<TopoDS_Face> kept;
   const std::string error = band_faces(u, kept, stats);
   if (!error.empty()) throw std::runtime_error("trim: " + error + "; the pieces cannot be glued");

@@ -49,8 +49,9 @@ void CutDisks::use_layout(int cluster, int layout) {
     if (d.cluster == cluster) d.active = d.layout == layout;
 }
 
-void CutDisks::reset_fates() {
-  for (Disk& d : disks_) d.fate = Fate::Present, d.changed_by = -2;
+void CutDisks::reset_fates(const std::vector<char>* among) {
+  for (Disk& d : disks_)
+    if (!among || (*among)[d.cluster]) d.fate = Fate::Present, d.changed_by = -2;
 }
 
 void CutDisks::track(BRepAlgoAPI_BooleanOperation& op, const TopoDS_Shape& result, int cluster,

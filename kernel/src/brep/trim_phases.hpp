@@ -15,6 +15,7 @@
 #include <TopoDS_Shape.hxx>
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -58,6 +59,17 @@ struct Bodies {
   std::optional<SolidBody> inner;  // the skin's inner boundary, against which the lattice is trimmed
 };
 Bodies make_bodies(const TopoDS_Shape& body_shape, const TrimOptions& options, TrimBudget& budget);
+
+// The pieces of a hub, each in a bounding ball: the node ball, and each half-beam from its exit circle to its cut.
+// A hub is clear of a boundary when all its pieces are; and since the segment joining two nodes runs through their
+// pieces (ball, half-beam, half-beam, ball), hubs clear of the boundary and joined by a beam lie on the same side.
+struct Piece {
+  Vec3 center{0.0};
+  double radius = 0.0;
+};
+// Per ball (with the cuts in `frustums`).
+std::vector<std::vector<Piece>> hub_pieces(const FlatLattice& f, const std::vector<BeamFrustum>& frustums,
+                                           Progress& progress);
 
 enum class HubState : char { Absent, Inside, Outside, Crossing };
 struct HubStates {
@@ -144,7 +156,7 @@ class CutDisks {
            const std::vector<BeamFrustum>& frustums);
   bool contains(const TopoDS_Shape& face) const { return index_.count(face.TShape().get()) > 0; }
   void use_layout(int cluster, int layout);
-  void reset_fates();
+  void reset_fates(const std::vector<char>* among = nullptr);  // of every disk, or of the clusters `among` marks
 
   // Records the fates a Boolean gave the disks of `cluster` (-1: the final Boolean, over every cluster, or those
   // `among` marks). `frame`: where the Boolean saw its arguments (a turned frame).
@@ -174,6 +186,10 @@ struct ClusterClips {
   std::vector<char> failed;             // per cluster: the first Common failed (retried)
   std::vector<std::vector<CutFace>> cut_faces;  // per cluster, with a skin: its faces on the inner boundary
   std::vector<char> as_holes;           // per cluster: those cut faces can be holes in the skin
+  // Per cluster, with a skin: it reaches an edge, seam or vertex of the inner boundary (within its hubs' bounding
+  // pieces), so its cut faces cannot be holes: it is united with the skin through the pores' Cut (skin union),
+  // unclipped, and its Common is not run (results holds the unclipped solid).
+  std::vector<char> on_rim;
 };
 
 struct ClipContext {
@@ -195,6 +211,11 @@ ClusterClips clip_clusters(const ClipContext& c, CutDisks& disks, Progress& prog
 void retry_failed_clusters(const ClipContext& c, SeamPreference seams, CutEdges& cuts, ClusterClips& clips,
                            CutDisks& disks, BrepPieces& second_layout, TrimStats& stats, Progress& progress);
 
+// The rim clusters' Commons (those on_rim marks, whose Cut through the pores failed its checks), with the retries;
+// on_rim is cleared. `second_layout` keeps their other layout's pieces alive.
+void clip_rim_clusters(const ClipContext& c, SeamPreference seams, CutEdges& cuts, ClusterClips& clips,
+                       CutDisks& disks, BrepPieces& second_layout, TrimStats& stats, Progress& progress);
+
 // ---- the union with the skin, and the faces kept -------------------------------------------------------------
 
 struct UnionContext {
@@ -204,11 +225,13 @@ struct UnionContext {
   const std::vector<TopoDS_Face>& interior_faces;  // the part's faces outside the band
   Progress& progress;                              // the union's and the checks' share
   std::int64_t union_weight = 0, verify_weight = 0;
+  // Runs the rim clusters' Commons (clip_rim_clusters), when their Cut through the pores failed.
+  std::function<void()> clip_rim_clusters;
 };
 
 // The faces the band contributes, united with the skin where there is one; an error message, or empty.
-// Clip with a skin: by holes in the skin's inner faces where the clusters' cut faces can be holes, a glued Fuse
-// for the others, and through the pores should that go wrong; Whole with a skin: through the pores; no skin:
+// Clip with a skin: by holes in the skin's inner faces where the clusters' cut faces can be holes, one Cut
+// of the inner body for the others (on its rims), and through the pores for all should that go wrong; Whole with a skin: through the pores; no skin:
 // the clipped clusters' faces.
 std::string band_faces(UnionContext& u, std::vector<TopoDS_Face>& kept, TrimStats& stats);
 

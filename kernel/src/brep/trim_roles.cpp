@@ -20,18 +20,13 @@ constexpr std::int64_t kBodyUnits = 1000, kSkinUnits = 4000, kPiecesUnits = 1000
 // Estimates of the rest, relative to building one element (ball or beam) = 2, measured on a cubic strut lattice
 // in a cylinder (curved bodies: surface-surface intersections; a box's planes make the Booleans several times
 // cheaper, and everything fast): per beam whose cut needs an exact distance (cluster split); per crossing hub,
-// its cluster's Common with the body, the glued Fuse with the skin or else the Cut through the pores, the check
+// its cluster's Common with the body, the union with the skin (holes and the rim clusters' Cut) or else the Cut
+// through the pores, the check
 // of the faces the Booleans produced; per element, the assembly into solids.
-constexpr std::int64_t kBuildPerElement = 2, kSplitPerBeam = 2, kBooleanPerHub = 2000, kGluedFusePerHub = 800,
+constexpr std::int64_t kBuildPerElement = 2, kSplitPerBeam = 2, kBooleanPerHub = 2000, kSkinUnionPerHub = 800,
                        kPoresCutPerHub = 3000, kVerifyPerHub = 300, kAssemblePerElement = 3;
 
-// The pieces of a hub, each in a bounding ball: the node ball, and each half-beam from its exit circle to its cut.
-// A hub is clear of a boundary when all its pieces are; and since the segment joining two nodes runs through their
-// pieces (ball, half-beam, half-beam, ball), hubs clear of the boundary and joined by a beam lie on the same side.
-struct Piece {
-  Vec3 center{0.0};
-  double radius = 0.0;
-};
+}  // namespace
 
 std::vector<std::vector<Piece>> hub_pieces(const FlatLattice& f, const std::vector<BeamFrustum>& frustums,
                                            Progress& progress) {
@@ -57,6 +52,8 @@ std::vector<std::vector<Piece>> hub_pieces(const FlatLattice& f, const std::vect
   progress.finish();
   return out;
 }
+
+namespace {
 
 // Which pieces the triangulation's lower bound of the distance clears (most of them), per hub; `clear` marks the
 // hubs it clears whole.
@@ -275,7 +272,7 @@ WorkWeights work_weights(const FlatLattice& f, const HubRoles& r, const TrimOpti
   w.build_band = kBuildPerElement * w.band_elements;
   w.build_interior = kBuildPerElement * w.interior_elements;
   w.boolean = r.has_band ? (clip ? kBooleanPerHub : kBuildPerElement) * w.band_hubs : 0;
-  w.skin_union = r.has_band && unite ? (clip ? kGluedFusePerHub : kPoresCutPerHub) * w.band_hubs : 0;
+  w.skin_union = r.has_band && unite ? (clip ? kSkinUnionPerHub : kPoresCutPerHub) * w.band_hubs : 0;
   w.verify = r.has_band && options.verify_booleans ? kVerifyPerHub * w.band_hubs : 0;
   w.assemble = kAssemblePerElement * (w.band_elements + w.interior_elements) + 1;
   return w;

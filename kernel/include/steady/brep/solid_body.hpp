@@ -41,6 +41,9 @@ class SolidBody {
 
   // A lower bound of the distance from p to the boundary, fast (thread-safe).
   double distance_lower_bound(const Vec3& p) const;
+  // A lower bound of the distance from p to the boundary's edges, seams and vertices, fast (thread-safe): where a
+  // lattice meets the boundary farther than that from them, what it cuts out of the boundary lies inside faces.
+  double edge_distance_lower_bound(const Vec3& p) const;
   // The distance from p to the boundary (BRepExtrema; serial).
   double exact_distance(const Vec3& p) const;
   // The points of the boundary nearest to p (BRepExtrema's solutions at the least distance, over every shell;
@@ -51,6 +54,7 @@ class SolidBody {
 
  private:
   void prepare(const TopoDS_Shape& shape, const std::string& field);
+  void add_edge_segments();  // the edge tree, from the triangulation
   bool classifier_says_inside(const Vec3& p) const;
   // InvalidInput naming `field` when the classifier contradicts the body's own faces (see the definition).
   void check_classifier_consistent(const std::string& field) const;

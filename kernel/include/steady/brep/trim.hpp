@@ -40,6 +40,8 @@ struct TrimOptions {
   bool verify_booleans = true;  // check the Booleans' output with BRepCheck (an error instead of a bad solid)
   bool move_cuts = true;  // cut beams between crossing hubs off their middle where that keeps the hubs in
                           // separate clusters (false: only halfway, for comparisons)
+  bool rim_cut = true;  // with a skin, unite the clusters on the inner boundary's rims with it by one Cut when they
+                        // hold most of the band (false: clip them and glue them by a Fuse, for comparisons)
   // Diagnostics as they happen, for the developers (how long the hubs took, why an attempt failed, why the union
   // went through the pores); none when empty. Python: brep(..., log=print).
   std::function<void(const std::string&)> report;
@@ -60,7 +62,12 @@ struct TrimStats {
   std::int64_t turned_clusters = 0;       //   in a turned frame
   std::int64_t fuzzy_clusters = 0;        //   with a fuzzy Common (1e-4 or 1e-3 of their size)
   std::int64_t holed_clusters = 0;        // with a skin: clusters glued to it by holes in its inner faces, no
-                                          // Boolean (the others by a glued Fuse)
+                                          // Boolean; the others:
+  std::int64_t rim_clusters = 0;          //   on the inner boundary's edges, seams or poles: united with the skin
+                                          //   by one Cut of the inner body (through the pores)
+  std::int64_t rim_clusters_unclipped = 0;  //   of those, found before their Common (which was not run)
+  std::string rim_cut_reason;             // why that Cut failed its checks, when it did: the rim clusters were then
+                                          // clipped one by one and glued to the skin by a Fuse
   std::int64_t core_hubs = 0, distinct_cores = 0, fused_cores = 0;  // crowded hubs built from cores, and the cores built
   // With the skin apart (!unite_skin): pieces of the trimmed lattice holding no hub built whole (ends of beams and
   // hubs cut at the inner wall, touching only the skin), given to the skin part, and their volume.
