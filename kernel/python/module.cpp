@@ -22,6 +22,7 @@ void bind_presets(py::module_& m);
 void bind_mesh(py::module_& m);
 void bind_slices(py::module_& m);
 void bind_cots(py::module_& m);
+void bind_steady_map2(py::module_& m);
 }  // namespace steadypy
 
 PYBIND11_MODULE(steadylattice, m) {
@@ -63,4 +64,5 @@ PYBIND11_MODULE(steadylattice, m) {
   steadypy::bind_mesh(m);
   steadypy::bind_slices(m);
   steadypy::bind_cots(m);
+  steadypy::bind_steady_map2(m);
 }

@@ -20,6 +20,7 @@
 #include "steady/cots/becots_range.hpp"
 #include "steady/cots/becots_sums.hpp"
 #include "steady/cots/cots_map.hpp"
+#include "steady/cots/steady_map2.hpp"
 
 #include "steady/lattice/beam_frustum.hpp"
 #include "steady/lattice/broad_phase.hpp"

@@ -31,6 +31,9 @@ class Similarity2 {
   double scale() const { return std::abs(a_); }
   double angle() const { return log_multiplier_.imag(); }
   Complex multiplier() const { return a_; }
+  // The generator: S = exp(L, w), z -> e^L z + (e^L - 1) / L w.
+  Complex log_multiplier() const { return log_multiplier_; }
+  Complex velocity() const { return velocity_; }
   Complex offset() const { return b_; }
   Similarity2Kind kind() const;
   // The fixed point (rotation, dilation, spiral); throws for translations and the identity.
