@@ -108,6 +108,10 @@ def report_trim(label, stats):
         FreeCAD.Console.PrintWarning(
             "%s: %d of %d hubs that lost a neighbour got no bridge (it would run into another kept element); they "
             "stay joined by their other beams\n" % (label, stats["blocked_bridges"], stats["lost_neighbour_hubs"]))
+    if stats.get("rim_cut_reason"):
+        FreeCAD.Console.PrintMessage(
+            "%s: the clusters on the skin's rims were clipped one by one, their single Cut having failed (%s)\n"
+            % (label, stats["rim_cut_reason"]))
     if stats["union_through_pores"]:
         FreeCAD.Console.PrintMessage("%s: the union with the skin went through the pores (%s)\n"
                                      % (label, stats["pores_reason"]))
