@@ -1,7 +1,7 @@
 // Trimming: the faces the boundary band contributes, united with the skin where there is one (docs/brep.md,
 // "skin"): by holes in the skin's inner faces where the clipped clusters' cut faces can be holes (no Boolean,
-// skin_holes.hpp), through the pores for the clusters on the inner boundary's edges and seams (one Cut), and
-// through the pores for every cluster should either go wrong.
+// skin_holes.hpp); for the clusters on the inner boundary's edges and seams, one Cut through the pores (when they
+// hold most of the band) or a glued Fuse; and through the pores for every cluster should that go wrong.
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <TopExp.hxx>
@@ -109,9 +109,10 @@ std::string skin_pieces(UnionContext& u, const std::vector<char>& rim, const std
   }
   u.disks.track(*op, merged, -1, TopLoc_Location(), &rim);
   TopExp::MapShapes(copy, TopAbs_FACE, copy_faces);
+  if (copy_faces.Extent() != (rim_cut ? inner_faces : skin_faces).Extent())
+    return "the skin read back from BREP text differs";
   for (int i = 1; i <= inner_faces.Extent(); ++i) {
     const int at = rim_cut ? i : skin_faces.FindIndex(inner_faces(i));  // where the copy holds inner face i
-    if (at < 1 || at > copy_faces.Extent()) return "the skin read back from BREP text differs";
     inner_of.emplace(copy_faces(at).TShape().get(), i);
     for (TopTools_ListOfShape::Iterator it(op->Modified(copy_faces(at))); it.More(); it.Next())
       inner_of.emplace(it.Value().TShape().get(), i);
