@@ -125,8 +125,8 @@ void find_cut_faces(const ClipContext& c, BRepAlgoAPI_BooleanOperation& op, cons
 // vertices. Their cut faces would run along those edges (or hold a pore, on a lattice dense enough to cover an
 // edge), so they could not be holes, and they are united with the skin through the pores, in one Cut of the inner
 // body by all of them, unclipped. That pays where they hold most of the band: the 10,800-beam dense octet's band
-// is a single cluster of 13,162 faces, whose Common took 31 s, the check of its 365-wire cut face 11 s and the
-// glued Fuse with the skin 16 s, where the Cut takes 29 s. Where they are a small part of the band their Commons
+// is a single cluster of 13,162 faces, whose Common took 31 s, the check of what it produced 15 s (7.7 s of it on
+// its 365-wire cut face) and the glued Fuse with the skin 16 s, where the Cut takes 29 s. Where they are a small part of the band their Commons
 // (each retried on its own should OpenCASCADE fail) and the glued Fuse are cheap, and one Cut of all of them has
 // no retries: on the 10,095-beam benchmark with a skin (41 of 601 clusters) it left a self-intersecting wire, and
 // the fallback cost 7 s. So none is marked unless the marked clusters hold at least half of the band's faces.
