@@ -187,8 +187,9 @@ struct ClusterClips {
   std::vector<std::vector<CutFace>> cut_faces;  // per cluster, with a skin: its faces on the inner boundary
   std::vector<char> as_holes;           // per cluster: those cut faces can be holes in the skin
   // Per cluster, with a skin: it reaches an edge, seam or vertex of the inner boundary (within its hubs' bounding
-  // pieces), so its cut faces cannot be holes: it is united with the skin through the pores' Cut (skin union),
-  // unclipped, and its Common is not run (results holds the unclipped solid).
+  // pieces), so its cut faces cannot be holes, and such clusters hold most of the band (otherwise none is marked):
+  // it is united with the skin through the pores' Cut (skin union), unclipped, and its Common is not run (results
+  // holds the unclipped solid).
   std::vector<char> on_rim;
 };
 
@@ -230,9 +231,10 @@ struct UnionContext {
 };
 
 // The faces the band contributes, united with the skin where there is one; an error message, or empty.
-// Clip with a skin: by holes in the skin's inner faces where the clusters' cut faces can be holes, one Cut
-// of the inner body for the others (on its rims), and through the pores for all should that go wrong; Whole with a skin: through the pores; no skin:
-// the clipped clusters' faces.
+// Clip with a skin: by holes in the skin's inner faces where the clusters' cut faces can be holes; for the others
+// (on its rims) one Cut of the inner body when they were marked on_rim, else their Commons glued by a Fuse (and
+// those too after a failed Cut); through the pores for all should that go wrong. Whole with a skin: through the
+// pores. No skin: the clipped clusters' faces.
 std::string band_faces(UnionContext& u, std::vector<TopoDS_Face>& kept, TrimStats& stats);
 
 // ---- policy Bridge --------------------------------------------------------------------------------------------

@@ -20,9 +20,9 @@ constexpr std::int64_t kBodyUnits = 1000, kSkinUnits = 4000, kPiecesUnits = 1000
 // Estimates of the rest, relative to building one element (ball or beam) = 2, measured on a cubic strut lattice
 // in a cylinder (curved bodies: surface-surface intersections; a box's planes make the Booleans several times
 // cheaper, and everything fast): per beam whose cut needs an exact distance (cluster split); per crossing hub,
-// its cluster's Common with the body, the union with the skin (holes and the rim clusters' Cut) or else the Cut
-// through the pores, the check
-// of the faces the Booleans produced; per element, the assembly into solids.
+// its cluster's Common with the body, the union with the skin (holes, and the rim clusters' glued Fuse or Cut) or
+// else the Cut through the pores, the check of the faces the Booleans produced; per element, the assembly into
+// solids.
 constexpr std::int64_t kBuildPerElement = 2, kSplitPerBeam = 2, kBooleanPerHub = 2000, kSkinUnionPerHub = 800,
                        kPoresCutPerHub = 3000, kVerifyPerHub = 300, kAssemblePerElement = 3;
 

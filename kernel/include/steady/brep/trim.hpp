@@ -63,8 +63,9 @@ struct TrimStats {
   std::int64_t fuzzy_clusters = 0;        //   with a fuzzy Common (1e-4 or 1e-3 of their size)
   std::int64_t holed_clusters = 0;        // with a skin: clusters glued to it by holes in its inner faces, no
                                           // Boolean; the others:
-  std::int64_t rim_clusters = 0;          //   on the inner boundary's edges, seams or poles: united with the skin
-                                          //   by one Cut of the inner body (through the pores)
+  std::int64_t rim_clusters = 0;          //   on the inner boundary's edges, seams or poles: clipped and glued to
+                                          //   the skin by a Fuse, or, where they hold most of the band, united
+                                          //   with it by one Cut of the inner body (through the pores)
   std::int64_t rim_clusters_unclipped = 0;  //   of those, found before their Common (which was not run)
   std::string rim_cut_reason;             // why that Cut failed its checks, when it did: the rim clusters were then
                                           // clipped one by one and glued to the skin by a Fuse
