@@ -96,6 +96,9 @@ void fill_stats(const steady::TrimStats& s, py::dict& d) {
   d["core_hubs"] = s.core_hubs;
   d["distinct_cores"] = s.distinct_cores;
   d["fused_cores"] = s.fused_cores;
+  d["tight_cores"] = s.tight_cores;
+  d["hub_groups"] = s.hub_groups;
+  d["grouped_hubs"] = s.grouped_hubs;
   d["relaid_out"] = s.relaid_out;
   d["relaid_reason"] = s.relaid_reason;
   d["union_through_pores"] = s.union_through_pores;

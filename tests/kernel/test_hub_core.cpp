@@ -22,10 +22,13 @@
 #include "steady/brep/brep_io.hpp"
 #include "steady/core/errors.hpp"
 #include "steady/lattice/flat_lattice.hpp"
+#include "steady/lattice/presets.hpp"
+#include "steady/properties/lattice_properties.hpp"
 #include "brep/hub_core.hpp"
 #include "steady/brep/trim.hpp"
 #include "test_support.hpp"
 #include "brick_definition.hpp"
+#include "sample_lattices.hpp"
 
 namespace steady {
 namespace {
@@ -404,6 +407,84 @@ TEST(HubCore, HullModelLatticeIsOneValidSolid) {
     }
     EXPECT_NEAR(shape_volume(b.shape) / expected, 1.0, 2e-5) << (graded ? "graded" : "cubic");
   }
+}
+
+// A BCC node whose 8 cylinders (the hull model: beams as thick as the ball) leave along (+-1, +-1, +-1): two
+// cylinders 70.53 degrees apart meet in an ellipse reaching cot(35.26 deg) = sqrt(2) ball radii along each axis,
+// the envelope's top. Roomy collars sit 0.04 beyond it, tight ones kTightCollarMargin; the arrangement accepts the
+// tight ones only with their own clearance, and the core it builds encloses the quadrature's volume.
+TEST(HubCore, TightCollarsSitJustBeyondTheEnvelope) {
+  std::vector<CoreStump> stumps;
+  for (int k = 0; k < 8; ++k)
+    stumps.push_back(hull_stump(Vec3(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1), 0.0));
+  const std::vector<double> roomy = core_collars(stumps, CoreKind::Hull, kMaxCollarPosition);
+  const std::vector<double> tight = core_collars(stumps, CoreKind::Hull, kMaxCollarPosition, CollarFit::Tight);
+  // The envelope is sampled at 256 generators and its breakpoints: its peak between them is missed by < 1e-3.
+  for (std::size_t k = 0; k < stumps.size(); ++k) {
+    EXPECT_NEAR(roomy[k], std::sqrt(2.0) + 2.0 * hull::kCollarClearance, 1e-3) << k;
+    EXPECT_NEAR(tight[k], std::sqrt(2.0) + kTightCollarMargin, 1e-3) << k;
+  }
+  EXPECT_THROW(build_hub_core(stumps, CoreKind::Hull, tight), InvalidInput);  // checked with roomy clearance
+  const auto core = build_hub_core(stumps, CoreKind::Hull, tight, CollarFit::Tight);
+  const TopoDS_Shape solid = closed_core(*core);
+  EXPECT_TRUE(is_valid(solid)) << validity_report(solid);
+  EXPECT_NEAR(shape_volume(solid) / core_volume_by_quadrature(stumps, tight, 1000), 1.0, 2e-5);
+}
+
+// Issue 17's long sweep refused BCC lattices whose beams are as thick as their nodes (node 0.35 of the neighbour
+// distance): roomy collars need 1.018 of each half beam, the stumps' envelopes 0.990. The beams' hubs get tight
+// cores and the lattice is one valid solid of the exact volume; hubs whose beams fit keep their roomy cores.
+TEST(HubCore, BeamsTooShortForRoomyCollarsBuildWithTightOnes) {
+  const double node = 0.35 * 0.5 * std::sqrt(3.0);
+  std::vector<BeamPattern> diagonals;
+  for (const BeamPattern& p : test::bcc_patterns())
+    if (p.from != p.to) diagonals.push_back(p);
+  ASSERT_EQ(diagonals.size(), 8u);
+  for (bool thinner_corners : {false, true}) {
+    std::vector<BeamPattern> beams = diagonals;
+    for (BeamPattern& p : beams) p.from_radius = p.to_radius = node;
+    const double corner = thinner_corners ? 0.8 * node : node;  // the corners' beams then narrow toward them
+    for (BeamPattern& p : beams) (p.from == 0 ? p.from_radius : p.to_radius) = corner;
+    const Lattice lattice = Lattice::incremental({{{0, 0, 0}, node}, {{0.5, 0.5, 0.5}, node}}, beams, {2, 2, 2},
+                                                 Similarity::translation({1, 0, 0}), Similarity::translation({0, 1, 0}),
+                                                 Similarity::translation({0, 0, 1}));
+    const LatticeBrep b = build_lattice_brep(flatten(lattice));
+    EXPECT_TRUE(is_valid(b.shape)) << validity_report(b.shape);
+    EXPECT_EQ(solid_count(b.shape), 1);
+    if (!thinner_corners) EXPECT_GT(b.stats.tight_cores, 0);
+    EXPECT_LE(b.stats.tight_cores, b.stats.distinct_cores);
+    EXPECT_NEAR(shape_volume(b.shape) / lattice_properties(lattice).volume, 1.0, 1e-7)
+        << "tight cores " << b.stats.tight_cores << " of " << b.stats.distinct_cores;
+  }
+}
+
+// The sweep's octet at node 0.35 of the neighbour distance, beam/node 0.8, a slight screw along W (the sweep's
+// "screw" step): the neighbours at each end of some beams meet them past the other hub's collar, even a tight one.
+Lattice screwed_octet(double ratio) {
+  const PresetCell& cell = preset_cell("octet");
+  const double node = 0.35 * cell.neighbour_distance;
+  std::vector<TemplateNode> nodes;
+  for (const Vec3& b : cell.basis) nodes.push_back({b, node});
+  std::vector<BeamPattern> beams = preset_beam_patterns(cell);
+  for (BeamPattern& p : beams) p.from_radius = p.to_radius = node * ratio;
+  return Lattice::incremental(nodes, beams, {2, 2, 2}, Similarity::translation({1, 0, 0}),
+                              Similarity::translation({0, 1, 0}),
+                              Similarity::screw(0.03, {0, 0, 1}, {0.5, 0.5, 0}, 1.0));
+}
+
+// Hubs joined by beams too short even for tight collars are built as one (hub_group.hpp): the lattice is one
+// valid solid whose volume is the exact properties' (which unite those hubs by their own Fuse, of other pieces)
+// and, as the slow twin, OpenCASCADE's Fuse of every ball and beam cylinder, 5.181725751 (FreeCAD 0.20, once).
+TEST(HubCore, HubsJoinedByBeamsTooShortForTheirCollarsAreBuiltAsOne) {
+  const Lattice lattice = screwed_octet(0.8);
+  const LatticeBrep b = build_lattice_brep(flatten(lattice));
+  EXPECT_TRUE(is_valid(b.shape)) << validity_report(b.shape);
+  EXPECT_EQ(solid_count(b.shape), 1);
+  EXPECT_GT(b.stats.hub_groups, 0);
+  EXPECT_GE(b.stats.grouped_hubs, 2 * b.stats.hub_groups);
+  const double exact = lattice_properties(lattice).volume;
+  EXPECT_NEAR(shape_volume(b.shape) / exact, 1.0, 1e-7) << b.stats.grouped_hubs << " hubs in " << b.stats.hub_groups;
+  EXPECT_NEAR(exact, 5.181725751, 1e-6);
 }
 
 }  // namespace

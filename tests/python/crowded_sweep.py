@@ -1,9 +1,10 @@
 """Issue 17's robustness sweep: crowded hubs of every preset, node radius, beam/node ratio and kind of step.
 
 Each case builds the lattice's B-rep (no body) and checks it against the closed-form properties: one valid solid
-per connected lattice, volume equal to the exact one to 1e-7 relative. A case either passes, is refused because
-elements of different hubs meet (the clean check's business, not a hub's), is refused because a beam is too short
-for the collars of its two crowded hubs (the message must name the beam), or fails.
+per connected lattice, volume equal to the exact one to 1e-7 relative. A case either passes, builds a lattice
+whose properties cannot be computed (then checked against sampling its membership), is refused because elements of
+different hubs meet (the clean check's business, not a hub's), is refused because a beam is too short for the
+collars of its two crowded hubs (the message must name the beam), or fails.
 
 `python3 crowded_sweep.py [--long]` prints every case and the counts; test_crowded_hubs.py runs the short sweep.
 """
@@ -11,6 +12,8 @@ import itertools
 import math
 import sys
 import time
+
+import numpy as np
 
 import steadylattice as sl
 
@@ -44,7 +47,9 @@ def lattice(preset, node_fraction, ratio, step, counts):
 
 
 def run_case(preset, node_fraction, ratio, step, counts=(2, 2, 2)):
-    """(outcome, detail, seconds): outcome is 'built', 'foreign', 'too short' or 'failed'."""
+    """(outcome, detail, seconds): outcome is 'built' (the exact volume to 1e-7), 'sampled' (built, but the
+    lattice's properties cannot be computed: its volume within 5 sigma of sampling), 'foreign', 'too short' or
+    'failed'."""
     lat = lattice(preset, node_fraction, ratio, step, counts)
     start = time.perf_counter()
     try:
@@ -62,13 +67,36 @@ def run_case(preset, node_fraction, ratio, step, counts=(2, 2, 2)):
         return "failed", str(error)[:300], time.perf_counter() - start
     seconds = time.perf_counter() - start
     props = sl.brep_properties(text)
-    exact = lat.properties()["volume"]
+    detail = "%d cores (%d distinct, %d fused, %d tight), %d hubs in %d groups" % (
+        stats["core_hubs"], stats["distinct_cores"], stats["fused_cores"], stats["tight_cores"],
+        stats["grouped_hubs"], stats["hub_groups"])
+    try:
+        exact = lat.properties()["volume"]
+    except (ValueError, RuntimeError) as error:
+        # properties() fuses overlapping hubs of other nodes with OpenCASCADE and refuses when that Fuse loses
+        # volume (the hull model's tangent cones): the part is then checked against sampling its membership.
+        estimate, sigma = sampled_volume(lat)
+        detail += ", no exact volume (%s), sampled %.4f +- %.4f, B-rep %.4f" % (
+            str(error)[:60], estimate, sigma, props["volume"])
+        if not props["valid"] or props["solids"] != 1 or not abs(props["volume"] - estimate) <= 5 * sigma:
+            return "failed", "valid %s, %d solids, %s" % (props["valid"], props["solids"], detail), seconds
+        return "sampled", detail, seconds
     error = abs(props["volume"] / exact - 1.0)
-    detail = "%d cores (%d distinct, %d fused), volume error %.1e" % (
-        stats["core_hubs"], stats["distinct_cores"], stats["fused_cores"], error)
+    detail += ", volume error %.1e" % error
     if not props["valid"] or props["solids"] != 1 or not error <= VOLUME_TOLERANCE:
         return "failed", "valid %s, %d solids, %s" % (props["valid"], props["solids"], detail), seconds
     return "built", detail, seconds
+
+
+def sampled_volume(lat, n=400_000, seed=11):
+    """Volume by sampling the kernel's exact point membership over the lattice's box, and its standard error."""
+    rng = np.random.default_rng(seed)
+    centers, radii = lat.balls()
+    lo, hi = (centers - radii[:, None]).min(0), (centers + radii[:, None]).max(0)
+    points = lo + rng.random((n, 3)) * (hi - lo)
+    f = np.asarray(lat.contains(points), bool).mean()
+    box = float(np.prod(hi - lo))
+    return f * box, box * math.sqrt(f * (1 - f) / n)
 
 
 def short_cases():
@@ -89,7 +117,7 @@ def long_cases():
 
 
 def sweep(cases, out=sys.stdout):
-    counts = {"built": 0, "foreign": 0, "too short": 0, "failed": 0}
+    counts = {"built": 0, "sampled": 0, "foreign": 0, "too short": 0, "failed": 0}
     results = []
     for case in cases:
         outcome, detail, seconds = run_case(*case)

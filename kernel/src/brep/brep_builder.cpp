@@ -28,6 +28,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <map>
 #include <cmath>
 #include <numeric>
 #include <sstream>
@@ -42,6 +43,7 @@
 #include "steady/core/errors.hpp"
 #include "lattice/hub_catalog.hpp"
 #include "brep/hub_core.hpp"
+#include "brep/hub_group.hpp"
 #include "steady/core/memory_budget.hpp"
 
 namespace steady {
@@ -129,6 +131,7 @@ struct ShapeWork {
   std::vector<std::vector<ArcPcurve>> pcurves;  // per circle, per arc
   double max_error = 0.0;
   std::shared_ptr<const HubCore> core;           // for core hubs
+  bool tight = false;                            // its core rebuilt with tight collars (tighten_short_beams)
 };
 
 Handle(Geom2d_Line) line2d(double u, double v, double du, double dv) {
@@ -372,13 +375,7 @@ std::vector<BeamFrustum> selected_frustums(const FlatLattice& f, const BrepSelec
   return frustums;
 }
 
-gp_Trsf placement_transform(const Ball& ball, const Mat3& m) {
-  const double r = ball.radius;
-  gp_Trsf t;
-  t.SetValues(r * m[0][0], r * m[1][0], r * m[2][0], ball.center.x, r * m[0][1], r * m[1][1], r * m[2][1],
-              ball.center.y, r * m[0][2], r * m[1][2], r * m[2][2], ball.center.z);
-  return t;
-}
+gp_Trsf placement_transform(const Ball& ball, const Mat3& m) { return hub_placement(ball.center, ball.radius, m); }
 
 // A ring read from an existing closed circle edge set (a core's collar copied into place, or a cut built before).
 void ring_from_edges(Ring& ring, const Handle(Geom_Circle)& curve, const std::vector<double>& params,
@@ -458,6 +455,8 @@ struct PieceBuild {
   HubCatalog catalog;                // the hubs' distinct shapes
   std::vector<ShapeWork> shapes;     // per distinct shape: its sphere layout, or its core
   const BRep_Builder builder;
+  std::int64_t hub_groups = 0, grouped_hubs = 0;  // crowded hubs built as one (group_short_beams)
+  std::string group_failure;                      // why a group could not be built, for the error
 };
 
 void check_selection(const FlatLattice& f, const BrepSelection& selection) {
@@ -591,6 +590,169 @@ void place_core(PieceBuild& b, HubWork& hub, std::size_t h) {
   }
 }
 
+// Whole beams along which their two hubs' stumps do not fit (their collars or exits pass each other).
+std::vector<std::int64_t> short_whole_beams(const PieceBuild& b) {
+  std::vector<std::int64_t> out;
+  for (std::int64_t e = 0; e < b.f.beam_count(); ++e) {
+    const BeamWork& w = b.beams[e];
+    if (w.kind == BeamKind::Whole && !(w.end[0].axial + w.end[1].axial < b.frustums[e].cone.length * (1.0 - 1e-9)))
+      out.push_back(e);
+  }
+  return out;
+}
+
+// Beams too short for the roomy collars of their crowded hubs get a second chance: the distinct cores at their
+// ends are built again with tight collars (CollarFit::Tight, just beyond the envelope) and their hubs placed
+// again. A shape whose tight core is not nearer the ball on every stump (the arrangement refused it and the Fuse
+// took far collars) keeps its roomy core. The other cores stay roomy: their thin bands of cone are what trimming's
+// Booleans have been measured on.
+void tighten_short_beams(PieceBuild& b) {
+  const std::vector<std::int64_t> short_beams = short_whole_beams(b);
+  if (short_beams.empty()) return;
+  std::vector<char> tighten(b.shapes.size(), 0);
+  for (std::int64_t e : short_beams)
+    for (const EndCircle& ec : b.beams[e].end)
+      if (ec.hub >= 0 && b.hubs[ec.hub].kind != 0) tighten[b.catalog.placements[ec.hub].shape] = 1;
+  tbb::parallel_for(std::size_t(0), b.shapes.size(), [&](std::size_t s) {
+    if (!tighten[s]) return;
+    b.progress.check();
+    const std::int64_t rep = b.catalog.representatives[s];
+    const std::vector<CoreStump> stumps = core_stumps(b.catalog.shapes[s], b.geometry[rep].extras);
+    const CoreKind kind = core_kind(b.hubs[rep].kind);
+    std::shared_ptr<const HubCore> tight;
+    try {
+      tight = build_hub_core(stumps, kind, core_collars(stumps, kind, kMaxCollarPosition, CollarFit::Tight),
+                             CollarFit::Tight);
+    } catch (const InvalidInput&) {
+      return;
+    }
+    const std::vector<double>& roomy = b.shapes[s].core->collar_position;
+    for (std::size_t k = 0; k < roomy.size(); ++k)
+      if (!(tight->collar_position[k] <= roomy[k])) return;
+    b.shapes[s].core = tight;
+    b.shapes[s].tight = true;
+  });
+  tbb::parallel_for(std::size_t(0), b.hubs.size(), [&](std::size_t h) {
+    if (b.hubs[h].kind == 0 || !b.shapes[b.catalog.placements[h].shape].tight) return;
+    b.hubs[h].faces.clear();
+    place_core(b, b.hubs[h], h);
+  });
+}
+
+// Groups of crowded hubs are built as one up to this many hubs; beyond, the short beams are reported.
+constexpr std::size_t kMaxGroupHubs = 64;
+
+// Hubs joined by beams still too short for their collars (after tighten_short_beams) are built as one: the
+// connected groups of such beams' hubs, each by one Fuse of its members' closed cores (hub_group.hpp). The
+// group's faces go to its first hub; its other hubs keep none; the beams inside it are no longer built (their
+// two stumps overlap and cover them); the beams leaving it run from the group's collars as from a core's. A group
+// with a clean hub, more than kMaxGroupHubs hubs, or a Fuse that fails its checks is left as it was (its beams are
+// then reported by check_whole_beams_fit, with the reason).
+void group_short_beams(PieceBuild& b) {
+  const std::vector<std::int64_t> short_beams = short_whole_beams(b);
+  if (short_beams.empty()) return;
+  const std::size_t n = b.hubs.size();
+  std::vector<std::size_t> parent(n);
+  std::iota(parent.begin(), parent.end(), std::size_t(0));
+  auto root = [&](std::size_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (std::int64_t e : short_beams) {
+    const std::int64_t ha = b.beams[e].end[0].hub, hb = b.beams[e].end[1].hub;
+    if (ha < 0 || hb < 0) continue;
+    parent[root(static_cast<std::size_t>(ha))] = root(static_cast<std::size_t>(hb));
+  }
+  std::map<std::size_t, std::vector<std::size_t>> by_root;
+  for (std::int64_t e : short_beams)
+    for (const EndCircle& ec : b.beams[e].end) {
+      if (ec.hub < 0) continue;
+      std::vector<std::size_t>& g = by_root[root(static_cast<std::size_t>(ec.hub))];
+      if (std::find(g.begin(), g.end(), static_cast<std::size_t>(ec.hub)) == g.end()) g.push_back(ec.hub);
+    }
+  std::vector<std::vector<std::size_t>> groups;
+  for (auto& [r, members] : by_root) {
+    bool with_clean = false;
+    for (std::size_t h : members) with_clean = with_clean || b.hubs[h].kind == 0;
+    if (with_clean) {
+      b.group_failure = "a hub of a short beam has no core";
+      continue;
+    }
+    if (members.size() > kMaxGroupHubs) {
+      b.group_failure = std::to_string(members.size()) + " hubs are joined by such beams; up to " +
+                        std::to_string(kMaxGroupHubs) + " are built as one";
+      continue;
+    }
+    std::sort(members.begin(), members.end());
+    groups.push_back(std::move(members));
+  }
+  std::vector<std::int64_t> group_of(n, -1);
+  for (std::size_t g = 0; g < groups.size(); ++g)
+    for (std::size_t h : groups[g]) group_of[h] = static_cast<std::int64_t>(g);
+  // A beam is inside a group when it is short: its two stumps overlap and cover it. A beam between two hubs of
+  // a group that fits between their collars (the third side of a triangle of short beams) is built as usual.
+  std::vector<char> is_short(b.f.beam_count(), 0);
+  for (std::int64_t e : short_beams) is_short[e] = 1;
+  auto inner = [&](std::int64_t e) {
+    const BeamWork& w = b.beams[e];
+    return is_short[e] && w.kind == BeamKind::Whole && w.end[0].hub >= 0 && w.end[1].hub >= 0 &&
+           group_of[w.end[0].hub] >= 0 && group_of[w.end[0].hub] == group_of[w.end[1].hub];
+  };
+  std::vector<std::string> failures(groups.size());
+  std::vector<char> built(groups.size(), 0);
+  std::vector<HubGroup> fused(groups.size());
+  tbb::parallel_for(std::size_t(0), groups.size(), [&](std::size_t g) {
+    b.progress.check();
+    std::vector<GroupMember> members;
+    for (std::size_t h : groups[g]) {
+      const HubPlacement& place = b.catalog.placements[h];
+      const std::int64_t rep = b.catalog.representatives[place.shape];
+      const Ball& ball = b.f.balls[b.hubs[h].ball];
+      GroupMember m;
+      m.core = b.shapes[place.shape].core.get();
+      m.stumps = core_stumps(b.catalog.shapes[place.shape], b.geometry[rep].extras);
+      m.center = ball.center;
+      m.radius = ball.radius;
+      m.rotation = place.rotation;
+      for (const auto& [e, end] : b.hubs[h].stumps) m.inner.push_back(inner(e));
+      members.push_back(std::move(m));
+    }
+    try {
+      fused[g] = fuse_hub_group(members, g);
+      built[g] = 1;
+    } catch (const InvalidInput& error) {
+      failures[g] = error.what();
+    }
+  });
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    if (!built[g]) {
+      b.group_failure = failures[g];
+      continue;
+    }
+    ++b.hub_groups;
+    b.grouped_hubs += static_cast<std::int64_t>(groups[g].size());
+    for (std::size_t i = 0; i < groups[g].size(); ++i) {
+      HubWork& hub = b.hubs[groups[g][i]];
+      hub.faces.clear();
+      if (i == 0)
+        for (TopExp_Explorer x(fused[g].faces, TopAbs_FACE); x.More(); x.Next()) hub.faces.push_back(TopoDS::Face(x.Current()));
+      for (std::size_t s = 0; s < hub.stumps.size(); ++s) {
+        const std::int64_t e = hub.stumps[s].first;
+        if (inner(e)) continue;
+        const TopoDS_Edge& collar = fused[g].collars[i][s];
+        Standard_Real first, last;
+        Handle(Geom_Circle) curve = Handle(Geom_Circle)::DownCast(BRep_Tool::Curve(collar, first, last));
+        TopoDS_Vertex v;
+        for (TopExp_Explorer x(collar, TopAbs_VERTEX); x.More(); x.Next()) v = TopoDS::Vertex(x.Current());
+        ring_from_edges(b.beams[e].end[hub.stumps[s].second], curve, {first}, {v}, {collar});
+      }
+    }
+  }
+  // Inner beams last: `inner` reads their kind.
+  for (std::int64_t e = 0; e < b.f.beam_count(); ++e)
+    if (inner(e) && built[group_of[b.beams[e].end[0].hub]]) b.beams[e].kind = BeamKind::None;
+}
+
 // How far along beam e its end `end` reaches into the beam with every beam radius at that hub scaled by k: the
 // collar the hub's core would need (the exit circle of a clean hub, which only shrinks with k), or infinity when
 // no collar fits.
@@ -608,7 +770,7 @@ double start_with_radii_scaled(const PieceBuild& b, std::int64_t e, int end, dou
     st.exit = st.end_radius * st.sin_phi + c * std::sqrt((1.0 - st.end_radius) * (1.0 + st.end_radius));
   }
   try {
-    return core_collars(stumps, CoreKind::Transversal, kMaxCollarPosition)[ec.slot] * g.ball.radius;
+    return core_collars(stumps, CoreKind::Transversal, kMaxCollarPosition, CollarFit::Tight)[ec.slot] * g.ball.radius;
   } catch (const InvalidInput&) {
     return std::numeric_limits<double>::infinity();
   }
@@ -631,12 +793,7 @@ double fitting_radius_factor(const PieceBuild& b, std::int64_t e) {
 // their balls under which all of them (up to kReportedShortBeams examined) fit.
 constexpr std::size_t kReportedShortBeams = 64;
 void check_whole_beams_fit(const PieceBuild& b) {
-  std::vector<std::int64_t> short_beams;
-  for (std::int64_t e = 0; e < b.f.beam_count(); ++e) {
-    const BeamWork& w = b.beams[e];
-    if (w.kind == BeamKind::Whole && !(w.end[0].axial + w.end[1].axial < b.frustums[e].cone.length * (1.0 - 1e-9)))
-      short_beams.push_back(e);
-  }
+  const std::vector<std::int64_t> short_beams = short_whole_beams(b);
   if (short_beams.empty()) return;
   const std::size_t examined = std::min(short_beams.size(), kReportedShortBeams);
   std::vector<double> factors(examined);
@@ -655,6 +812,7 @@ void check_whole_beams_fit(const PieceBuild& b) {
        << " (or smaller balls) would fit";
   else
     os << "; thinner beams or smaller balls there";
+  if (!b.group_failure.empty()) os << " (building their hubs as one failed: " << b.group_failure << ")";
   fail_input("hub", os.str());
 }
 
@@ -873,11 +1031,14 @@ BrepPieces collect_pieces(PieceBuild& b, CutEdges& cut_edges) {
     if (w.cut_is_new) cut_edges.emplace(e, CutCircle{w.cut.curve, w.cut.params, w.cut.vertices, w.cut.edges});
   }
   out.stats.balls = static_cast<std::int64_t>(b.hubs.size());
+  out.stats.hub_groups = b.hub_groups;
+  out.stats.grouped_hubs = b.grouped_hubs;
   out.stats.faces = static_cast<std::int64_t>(out.faces.size());
   out.stats.distinct_hubs = static_cast<std::int64_t>(b.shapes.size());
   for (const ShapeWork& w : b.shapes) {
     out.stats.distinct_cores += w.core != nullptr;
     out.stats.fused_cores += w.core != nullptr && w.core->fused;
+    out.stats.tight_cores += w.tight;
     for (const CircleLayout& c : w.layout.circles) out.stats.seam_crossing_circles += c.role != CircleRole::Inner;
   }
   return out;
@@ -889,7 +1050,7 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
                              Progress& progress) {
   check_selection(f, selection);
   const auto start = std::chrono::steady_clock::now();
-  PieceBuild b{f, selection, progress, selected_frustums(f, selection), {}, {}, {}, {}, {}, {}, BRep_Builder()};
+  PieceBuild b{f, selection, progress, selected_frustums(f, selection), {}, {}, {}, {}, {}, {}, BRep_Builder(), 0, 0, {}};
   classify_beams(b);
   gather_hubs(b);
   lay_out_shapes(b);
@@ -900,6 +1061,8 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
     progress.check();
     place_core(b, b.hubs[h], h);
   });
+  tighten_short_beams(b);
+  group_short_beams(b);
   check_whole_beams_fit(b);
   tbb::parallel_for(std::int64_t(0), f.beam_count(), [&](std::int64_t e) {
     if (b.beams[e].kind == BeamKind::None) return;

@@ -912,13 +912,13 @@ void build_sphere_faces(HullCoreBuild& h) {
 // face between its envelope and its collar, the sphere outside all caps (docs/brep.md, section 6). Built with the
 // cones tangent to the unit sphere (the ball's radius is then 1 / rho) and scaled by rho into the canonical frame.
 std::shared_ptr<const HubCore> build_envelope_core(const std::vector<CoreStump>& stumps, CoreKind kind,
-                                                   const std::vector<double>& collars) {
+                                                   const std::vector<double>& collars, CollarFit fit) {
   const int n = static_cast<int>(stumps.size());
   const double rho = shared_end_radius(stumps), ball = 1.0 / rho;
   HullCoreBuild h;
   h.cones = envelope_cones(stumps);
   for (int i = 0; i < n; ++i) h.v_collar.push_back((collars[i] * ball - h.cones[i].s) / h.cones[i].c);
-  h.arrangement = hull::arrange_envelopes(h.cones, h.v_collar);
+  h.arrangement = hull::arrange_envelopes(h.cones, h.v_collar, envelope_clearance(fit));
   choose_frame_and_split(h);
   collect_core_edges(h);
   make_core_topology(h);
@@ -1302,16 +1302,16 @@ std::shared_ptr<const HubCore> checked(std::shared_ptr<const HubCore> core, cons
 }  // namespace
 
 std::shared_ptr<const HubCore> build_hub_core(const std::vector<CoreStump>& stumps, CoreKind kind,
-                                              const std::vector<double>& collars) {
+                                              const std::vector<double>& collars, CollarFit fit) {
   if (stumps.empty()) unsupported("a hub core needs stumps");
-  if (kind == CoreKind::Hull) return checked(build_envelope_core(stumps, kind, collars), stumps);
+  if (kind == CoreKind::Hull) return checked(build_envelope_core(stumps, kind, collars, fit), stumps);
   // Transversal stumps of one end radius: the same exact construction, no Boolean; else (or where a stump is
   // swallowed up to its collar, or the seam finds no room) the Fuse.
   // Tangent exit caps (beams exactly as far apart as their caps are wide) give cusps the arrangement builds but
   // OpenCASCADE refuses as self-intersecting wires: such a core, or one off its exact volume, goes to the Fuse.
   if (share_end_radius(stumps)) {
     try {
-      std::shared_ptr<const HubCore> core = build_envelope_core(stumps, kind, collars);
+      std::shared_ptr<const HubCore> core = build_envelope_core(stumps, kind, collars, fit);
       if (BRepCheck_Analyzer(core->faces).IsValid() && core_volume_matches(*core, stumps)) return core;
     } catch (const InvalidInput&) {
     }

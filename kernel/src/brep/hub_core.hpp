@@ -49,8 +49,10 @@ struct HubCore {
 // says which were used. Throws InvalidInput ("hub") for
 // configurations outside the supported class (a stump swallowed by its neighbours, a conic through a cone's apex,
 // a collar touched by the Fuse).
+// `fit` says which collars those are (core_collars' fit), so the arrangement checks its envelope with the same
+// clearance.
 std::shared_ptr<const HubCore> build_hub_core(const std::vector<CoreStump>& stumps, CoreKind kind,
-                                              const std::vector<double>& collars);
+                                              const std::vector<double>& collars, CollarFit fit = CollarFit::Roomy);
 
 // The core closed by a disk at every collar: the solid the hub is up to its collars (the build measures it against
 // the exact properties before handing the core out; the tests check its validity).

@@ -18,6 +18,9 @@ TrimResult make_part(const FlatLattice& lattice, const LatticePartRequest& reque
     out.stats.core_hubs = built.stats.core_hubs;
     out.stats.distinct_cores = built.stats.distinct_cores;
     out.stats.fused_cores = built.stats.fused_cores;
+    out.stats.tight_cores = built.stats.tight_cores;
+    out.stats.hub_groups = built.stats.hub_groups;
+    out.stats.grouped_hubs = built.stats.grouped_hubs;
     return out;
   }
   TopoDS_Shape body;

@@ -70,6 +70,9 @@ BuiltHubs build_hubs(const FlatLattice& f, const HubRoles& roles, const CutPlan&
     stats.core_hubs += p->stats.core_hubs;
     stats.distinct_cores += p->stats.distinct_cores;
     stats.fused_cores += p->stats.fused_cores;
+    stats.tight_cores += p->stats.tight_cores;
+    stats.hub_groups += p->stats.hub_groups;
+    stats.grouped_hubs += p->stats.grouped_hubs;
   }
   report(options, "trim: built the boundary and interior hubs in " + std::to_string(stats.build_seconds) + " s (" +
                       std::to_string(out.band.stats.distinct_cores) + " and " +

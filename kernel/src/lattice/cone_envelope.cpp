@@ -53,7 +53,7 @@ void drop_pieces_without_length(Envelope& env) {
 }
 
 // The envelope of cone i: its pieces between breakpoints, merged where the active neighbour stays the same.
-Envelope envelope_of(const std::vector<Cone>& cones, int i, double v_collar, VertexPool& pool) {
+Envelope envelope_of(const std::vector<Cone>& cones, int i, double v_collar, double clearance, VertexPool& pool) {
   const Cone& ki = cones[i];
   std::vector<double> us = breakpoint_candidates(cones, i);
   // Validity along the whole circle: the envelope stays below the collar, the ceilings above it.
@@ -61,7 +61,7 @@ Envelope envelope_of(const std::vector<Cone>& cones, int i, double v_collar, Ver
   for (int k = 0; k < kEnvelopeProbes; ++k) probes.push_back(kTwoPi * k / kEnvelopeProbes);
   for (double u : probes) {
     const Active a = envelope_at(cones, i, u);
-    if (!(a.v < v_collar - kCollarClearance) || !(ceiling_at(cones, i, u) > v_collar + kCollarClearance))
+    if (!(a.v < v_collar - clearance) || !(ceiling_at(cones, i, u) > v_collar + clearance))
       fail_input("hub", "a stump is swallowed by its neighbours up to its collar");
   }
   Envelope env;
@@ -213,11 +213,12 @@ int VertexPool::find_or_add(const Vec3& p) {
   return static_cast<int>(points.size()) - 1;
 }
 
-Arrangement arrange_envelopes(const std::vector<Cone>& cones, const std::vector<double>& v_collar) {
+Arrangement arrange_envelopes(const std::vector<Cone>& cones, const std::vector<double>& v_collar,
+                              double clearance) {
   const int n = static_cast<int>(cones.size());
   Arrangement out;
   out.envelopes.resize(n);
-  for (int i = 0; i < n; ++i) out.envelopes[i] = envelope_of(cones, i, v_collar[i], out.vertices);
+  for (int i = 0; i < n; ++i) out.envelopes[i] = envelope_of(cones, i, v_collar[i], clearance, out.vertices);
   // Closed pieces (one active all around) get their vertex from the lower face; the partner face starts there.
   for (int i = 0; i < n; ++i) {
     Piece& p = out.envelopes[i].pieces[0];

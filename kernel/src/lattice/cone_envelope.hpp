@@ -86,12 +86,14 @@ struct VertexPool {
 };
 
 // The envelopes of all cones with their shared vertices. v_collar[i] is the collar's v on cone i: the envelope
-// must stay below it and every ceiling above it (by kCollarClearance), else the hub is refused with a message.
+// must stay below it and every ceiling above it (by `clearance`: kCollarClearance, or less for tight collars, see
+// CollarFit), else the hub is refused with a message.
 // Closed pieces (one neighbour all around) get their vertex on the lower index's face; the partner starts there.
 struct Arrangement {
   VertexPool vertices;
   std::vector<Envelope> envelopes;
 };
-Arrangement arrange_envelopes(const std::vector<Cone>& cones, const std::vector<double>& v_collar);
+Arrangement arrange_envelopes(const std::vector<Cone>& cones, const std::vector<double>& v_collar,
+                              double clearance = kCollarClearance);
 
 }  // namespace steady::hull

@@ -26,7 +26,7 @@ Cone make_cone(const CoreStump& st) { return hull::make_cone(st.direction, st.si
 // Collars just beyond each stump's envelope in the arrangement of stumps sharing their end radius (scaled to the
 // unit sphere, the ball's sphere at exit_v). Empty when another stump dominates some generator again farther out
 // (stumps meeting away from the hub: the conservative collars then decide) or a collar would come near the apex.
-std::vector<double> envelope_collars(const std::vector<CoreStump>& stumps) {
+std::vector<double> envelope_collars(const std::vector<CoreStump>& stumps, double margin) {
   const double rho = shared_end_radius(stumps);
   const std::vector<Cone> cones = envelope_cones(stumps);
   const double exit_v = cones[0].exit_v;
@@ -39,8 +39,8 @@ std::vector<double> envelope_collars(const std::vector<CoreStump>& stumps) {
       if (hull::ceiling_at(cones, i, u) < std::numeric_limits<double>::infinity()) return {};
       top = std::max(top, hull::envelope_at(cones, i, u).v);
     }
-    // Twice the clearance the arrangement checks at its probes: the envelope may peak between them.
-    const double v = top + 2.0 * kCollarClearance;
+    // The margin is twice the clearance the arrangement then checks at its probes: the envelope may peak between them.
+    const double v = top + margin;
     const Cone& k = cones[i];
     if (!(k.c - v * k.s > 0.1 * k.c)) return {};
     collars.push_back((k.s + v * k.c) * rho);
@@ -72,11 +72,16 @@ bool share_end_radius(const std::vector<CoreStump>& stumps) {
 
 double shared_end_radius(const std::vector<CoreStump>& stumps) { return std::min(stumps.at(0).end_radius, 1.0); }
 
-std::vector<double> core_collars(const std::vector<CoreStump>& stumps, CoreKind kind, double max_position) {
+double envelope_clearance(CollarFit fit) {
+  return fit == CollarFit::Roomy ? kCollarClearance : 0.5 * kTightCollarMargin;
+}
+
+std::vector<double> core_collars(const std::vector<CoreStump>& stumps, CoreKind kind, double max_position,
+                                 CollarFit fit) {
   // The hull model is the case rho = 1.
   if (share_end_radius(stumps)) {
-    std::vector<double> tight = envelope_collars(stumps);
-    if (!tight.empty()) return tight;
+    std::vector<double> near = envelope_collars(stumps, 2.0 * envelope_clearance(fit));
+    if (!near.empty()) return near;
   }
   return place_collars(stumps, kind, max_position);
 }

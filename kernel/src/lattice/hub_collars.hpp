@@ -43,12 +43,22 @@ double shared_end_radius(const std::vector<CoreStump>& stumps);
 // exit_v = sqrt(1 / rho^2 - 1) (0 in the hull model).
 std::vector<hull::Cone> envelope_cones(const std::vector<CoreStump>& stumps);
 
+// How far beyond its stump's envelope an arranged collar goes. Roomy: twice kCollarClearance, the band of cone
+// that trimming's Booleans have always split (docs/brep.md, "hub cores"). Tight: kTightCollarMargin, for beams
+// too short for their two hubs' roomy collars (a BCC node whose beams are as thick as the node: the envelope
+// reaches 0.990 of the half beam, roomy collars 1.018); the arrangement then checks its envelope against the
+// collar with envelope_clearance(Tight).
+enum class CollarFit { Roomy, Tight };
+constexpr double kTightCollarMargin = 0.005;
+double envelope_clearance(CollarFit fit);
+
 // The collars a B-rep core uses. Stumps of one end radius (the hull model, or explicit radii equal at the node): each collar just beyond the envelope where
-// the other stumps meet its stump (plus clearance), when no stump meets another again farther out; much closer
+// the other stumps meet its stump (by the fit's margin), when no stump meets another again farther out; much closer
 // to the ball than place_collars, whose collars must also see each other's angular cones apart (needed by the
 // mesh's radial graph and the Boolean, not by the arrangement), so thick beams still fit between two hubs.
-// Otherwise place_collars.
-std::vector<double> core_collars(const std::vector<CoreStump>& stumps, CoreKind kind, double max_position);
+// Otherwise place_collars (whatever the fit).
+std::vector<double> core_collars(const std::vector<CoreStump>& stumps, CoreKind kind, double max_position,
+                                 CollarFit fit = CollarFit::Roomy);
 
 // A crowded hub's stumps from its canonical caps and the slopes and end radii in its geometry's extras (see
 // hub_geometry), and which kind of core its HubGeometry::kind asks for.

@@ -185,13 +185,15 @@ std::int64_t find_root(std::vector<std::int64_t>& parent, std::int64_t x) {
 
 // Where the stumps of a hub run free (axial positions from its node, one per stump): beyond its collar a stump
 // meets no other stump of its hub. A hub whose caps keep apart needs no room: its stumps are free at the exit.
+// Tight collars (just beyond the envelope) leave the most room for moved cuts; the volume does not depend on them.
 std::vector<double> free_positions(const Hub& h) {
   std::vector<double> out;
   if (!any_stump_caps_overlap(hub_shape(h))) {
     for (const Stump& s : h.stumps) out.push_back(s.exit_position);
     return out;
   }
-  for (double c : core_collars(core_stumps(h), core_kind(h), kMaxCollarPosition)) out.push_back(c * h.ball.radius);
+  for (double c : core_collars(core_stumps(h), core_kind(h), kMaxCollarPosition, CollarFit::Tight))
+    out.push_back(c * h.ball.radius);
   return out;
 }
 

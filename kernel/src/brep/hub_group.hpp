@@ -1,0 +1,53 @@
+#pragma once
+// Crowded hubs built as one. Where a beam is shorter than its two crowded hubs' collars (the neighbours at each
+// end meet it past the other hub's collar: an octet or FCC node whose beams are nearly as thick as the node), no
+// hub-by-hub construction holds. The hubs joined by such beams form a group, built by one Boolean Fuse of their
+// cores, each closed by its collar disks and placed by similarity: the beams inside the group are covered by the
+// two overlapping stumps, and the group keeps the collars of the beams that leave it, as a single core would.
+// Each core is exact (hub_core.hpp) and the Fuse sees transversal contacts only, apart from the stumps of an inner
+// beam, which lie on one cone.
+#include <BRepBuilderAPI_Transform.hxx>
+#include <TopoDS_Compound.hxx>
+#include <TopoDS_Edge.hxx>
+#include <gp_Trsf.hxx>
+
+#include <cstdint>
+#include <vector>
+
+#include "brep/hub_core.hpp"
+#include "steady/core/vec.hpp"
+
+namespace steady {
+
+// One hub of a group: its core, where it is placed (world = center + radius * rotation * canonical), and which
+// of its stumps (in the core's order) belong to beams inside the group.
+struct GroupMember {
+  const HubCore* core = nullptr;
+  std::vector<CoreStump> stumps;  // canonical, as the core was built
+  Vec3 center{0.0};
+  double radius = 1.0;
+  Mat3 rotation{1.0};
+  std::vector<char> inner;  // per stump
+};
+
+struct HubGroup {
+  TopoDS_Compound faces;                          // an open shell bounded by the outer collars
+  std::int64_t face_count = 0;
+  std::vector<std::vector<TopoDS_Edge>> collars;  // per member, per stump: its collar (null when inner)
+  double volume = 0.0;                            // enclosed with the collar disks
+  double sampled_volume = 0.0, sampled_sigma = 0.0;  // the independent estimate it was checked against
+  double fuzzy = 0.0;                             // the Fuse's fuzzy value relative to the group's size (0: exact)
+};
+
+// The transform that places canonical coordinates of a hub (unit ball at the origin) at `center`, scaled by
+// `radius` and turned by `rotation`.
+gp_Trsf hub_placement(const Vec3& center, double radius, const Mat3& rotation);
+
+// Fuses the members' closed cores and checks the result: done without errors, one valid solid, every outer collar
+// disk found untouched (a planar face bounded by that collar circle alone), and the volume it encloses within the
+// bounds of a union (no less than the largest member, no more than their sum) and within 6 sigma of sampling the
+// members' own definition (ball, and each stump's cone up to its collar). Where a check fails, the Fuse is tried
+// again with small fuzzy values. Throws InvalidInput (field "hub") with the exact Fuse's failure when all fail.
+HubGroup fuse_hub_group(const std::vector<GroupMember>& members, std::uint64_t seed);
+
+}  // namespace steady
