@@ -3,11 +3,9 @@
 The sweep itself is in crowded_sweep.py (also a script); the short one runs here, the long one (at least 500
 cases) with STEADY_LONG_TESTS=1 (scripts/test.sh --long).
 """
-import math
 import os
 import re
 
-import numpy as np
 import pytest
 
 import crowded_sweep
@@ -86,15 +84,7 @@ def test_a_beam_too_short_for_its_hubs_names_the_radius_that_fits():
     assert sl.brep_properties(thinner.brep())["valid"]
 
 
-def monte_carlo_volume(lat, n=400_000, seed=11):
-    """Volume by sampling the kernel's exact point membership over the lattice's box, and its standard error."""
-    rng = np.random.default_rng(seed)
-    centers, radii = lat.balls()
-    lo, hi = (centers - radii[:, None]).min(0), (centers + radii[:, None]).max(0)
-    points = lo + rng.random((n, 3)) * (hi - lo)
-    f = np.asarray(lat.contains(points), bool).mean()
-    box = float(np.prod(hi - lo))
-    return f * box, box * math.sqrt(f * (1 - f) / n)
+monte_carlo_volume = crowded_sweep.sampled_volume
 
 
 def test_crowded_hubs_whose_stumps_meet_past_the_mid_plane_have_the_exact_volume():

@@ -1044,19 +1044,9 @@ gp_Ax2 spread_sphere_frame(const std::vector<CoreStump>& stumps) {
 // Which stump's collar disk `face` is (or -1): a plane through the collar's center, orthogonal to the stump, bounded
 // by a single circle of the collar's radius around that center.
 int collar_disk_index(const TopoDS_Face& face, const std::vector<CoreStump>& stumps, const std::vector<double>& collars) {
-  Handle(Geom_Plane) plane = Handle(Geom_Plane)::DownCast(BRep_Tool::Surface(face));
-  if (plane.IsNull()) return -1;
-  TopoDS_Edge only;
-  int edges = 0;
-  for (TopExp_Explorer x(face, TopAbs_EDGE); x.More(); x.Next()) {
-    if (BRep_Tool::Degenerated(TopoDS::Edge(x.Current()))) continue;
-    only = TopoDS::Edge(x.Current());
-    ++edges;
-  }
-  if (edges != 1) return -1;
-  Standard_Real first, last;
-  Handle(Geom_Circle) circle = Handle(Geom_Circle)::DownCast(BRep_Tool::Curve(only, first, last));
+  const Handle(Geom_Circle) circle = disk_circle(face);
   if (circle.IsNull()) return -1;
+  Handle(Geom_Plane) plane = Handle(Geom_Plane)::DownCast(BRep_Tool::Surface(face));
   const gp_Pnt c = circle->Location();
   for (std::size_t i = 0; i < stumps.size(); ++i) {
     const Vec3 d = glm::normalize(stumps[i].direction);
@@ -1200,6 +1190,20 @@ std::shared_ptr<const HubCore> build_transversal_core(const std::vector<CoreStum
   return spread;
 }
 
+
+Handle(Geom_Circle) disk_circle(const TopoDS_Face& face) {
+  if (Handle(Geom_Plane)::DownCast(BRep_Tool::Surface(face)).IsNull()) return nullptr;
+  TopoDS_Edge only;
+  int edges = 0;
+  for (TopExp_Explorer x(face, TopAbs_EDGE); x.More(); x.Next()) {
+    if (BRep_Tool::Degenerated(TopoDS::Edge(x.Current()))) continue;
+    only = TopoDS::Edge(x.Current());
+    ++edges;
+  }
+  if (edges != 1) return nullptr;
+  Standard_Real first, last;
+  return Handle(Geom_Circle)::DownCast(BRep_Tool::Curve(only, first, last));
+}
 
 TopoDS_Solid closed_core(const HubCore& core) {
   BRep_Builder b;

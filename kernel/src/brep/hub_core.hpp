@@ -21,7 +21,9 @@
 //
 // Other transversal hubs (end radii that differ): one Boolean Fuse of the ball with the stumps truncated at their
 // collars; every contact is transversal. It is also the fallback where the arrangement refuses a hub.
+#include <Geom_Circle.hxx>
 #include <TopoDS_Compound.hxx>
+#include <TopoDS_Face.hxx>
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Solid.hxx>
 
@@ -53,6 +55,11 @@ struct HubCore {
 // clearance.
 std::shared_ptr<const HubCore> build_hub_core(const std::vector<CoreStump>& stumps, CoreKind kind,
                                               const std::vector<double>& collars, CollarFit fit = CollarFit::Roomy);
+
+// The circle bounding `face` when it is a planar disk (one non-degenerate edge, a circle), else null: how a
+// collar disk is recognised in a Fuse's result, by its geometry (the Fuse's history has reported untouched disks
+// as deleted).
+Handle(Geom_Circle) disk_circle(const TopoDS_Face& face);
 
 // The core closed by a disk at every collar: the solid the hub is up to its collars (the build measures it against
 // the exact properties before handing the core out; the tests check its validity).

@@ -7,7 +7,6 @@
 #include <BRep_Tool.hxx>
 #include <GProp_GProps.hxx>
 #include <Geom_Circle.hxx>
-#include <Geom_Plane.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopTools_ListOfShape.hxx>
 #include <TopoDS.hxx>
@@ -101,17 +100,7 @@ double solid_volume(const TopoDS_Shape& shape) {
 // whose center, radius and axis are the collar's.
 std::pair<int, int> collar_disk(const TopoDS_Face& face, const std::vector<GroupMember>& members, double tolerance) {
   const std::pair<int, int> none(-1, -1);
-  if (Handle(Geom_Plane)::DownCast(BRep_Tool::Surface(face)).IsNull()) return none;
-  TopoDS_Edge only;
-  int edges = 0;
-  for (TopExp_Explorer x(face, TopAbs_EDGE); x.More(); x.Next()) {
-    if (BRep_Tool::Degenerated(TopoDS::Edge(x.Current()))) continue;
-    only = TopoDS::Edge(x.Current());
-    ++edges;
-  }
-  if (edges != 1) return none;
-  Standard_Real first, last;
-  Handle(Geom_Circle) circle = Handle(Geom_Circle)::DownCast(BRep_Tool::Curve(only, first, last));
+  const Handle(Geom_Circle) circle = disk_circle(face);
   if (circle.IsNull()) return none;
   const gp_Pnt c = circle->Location();
   const gp_Dir n = circle->Axis().Direction();
