@@ -1061,8 +1061,10 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
     progress.check();
     place_core(b, b.hubs[h], h);
   });
-  tighten_short_beams(b);
-  group_short_beams(b);
+  if (selection.crowded_fallbacks) {
+    tighten_short_beams(b);
+    group_short_beams(b);
+  }
   check_whole_beams_fit(b);
   tbb::parallel_for(std::int64_t(0), f.beam_count(), [&](std::int64_t e) {
     if (b.beams[e].kind == BeamKind::None) return;

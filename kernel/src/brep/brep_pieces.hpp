@@ -27,6 +27,10 @@ struct BrepSelection {
   std::vector<char> open_cuts;  // per beam (or empty): leave its cut open, for gluing; other cuts get a disk
   std::vector<double> cut_fractions;  // per beam (or empty: halfway): where its cut lies, BeamFrustum::cut_fraction
   SeamPreference seams = SeamPreference::FewestCrossings;  // where spherical faces put their seams
+  // Whole beams too short for their hubs' collars: tight collars, then hubs built as one (brep_builder.cpp). Off
+  // for the pieces trimming's Booleans clip: thin bands of cone between a stump's envelope and a tight collar make
+  // slivers those Booleans fail to split (docs/brep.md, "hub cores"); such beams are then refused.
+  bool crowded_fallbacks = true;
   static BrepSelection everything(const FlatLattice& lattice);
 };
 

@@ -54,6 +54,7 @@ BuiltHubs build_hubs(const FlatLattice& f, const HubRoles& roles, const CutPlan&
     sel.split = plan.split;
     sel.cut_fractions = plan.cut_fractions;
     sel.seams = seams;
+    sel.crowded_fallbacks = false;  // the band is clipped by Booleans
     Progress part(budget.progress(), budget.rest(weights.build_band));
     out.band = build_brep_pieces(f, sel, out.cuts, part);
   }

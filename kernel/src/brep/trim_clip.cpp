@@ -229,6 +229,7 @@ std::vector<std::vector<TopoDS_Face>> second_layout_faces(const ClipContext& c, 
   other.split = c.plan.split;
   other.cut_fractions = c.plan.cut_fractions;
   other.seams = seams == SeamPreference::FewestCrossings ? SeamPreference::MostCrossings : SeamPreference::FewestCrossings;
+  other.crowded_fallbacks = false;  // as the band's first layout
   second = build_brep_pieces(f, other, cuts);
   for (const auto& [beam, count] : vertices_before)
     if (cuts.at(beam).vertices.size() != count)
