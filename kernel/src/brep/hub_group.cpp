@@ -33,20 +33,25 @@ constexpr int kSamples = 400000;
 
 Vec3 world_point(const GroupMember& m, const Vec3& canonical) { return m.center + m.radius * (m.rotation * canonical); }
 
-// Whether world point p lies in the member as its core defines it: the ball, or a stump's cone between the plane
-// where the cone touches its end ball and the collar.
+// Whether world point p lies in the member as its closed core is: the ball, or a stump's cone between the plane
+// where the cone touches its end ball and the collar, but not in a stump's cone beyond its collar disk. A tight
+// collar may lie inside the ball, and another stump may reach through its disk: the closed core ends at the disk
+// (what lies beyond is the beam's), so those points are not the core's. (Counted, they put the sampled volume of
+// 5 hubs of an FCC at beam/node 0.8 2 % above the Fuse's, which agreed with the properties to 3e-8.)
 bool inside_member(const GroupMember& m, const Mat3& inverse, const Vec3& p) {
   const Vec3 q = inverse * ((p - m.center) / m.radius);
   const double qq = glm::dot(q, q);
-  if (qq <= 1.0) return true;
+  bool inside = qq <= 1.0;
   for (std::size_t k = 0; k < m.stumps.size(); ++k) {
     const CoreStump& s = m.stumps[k];
     const double t = glm::dot(q, glm::normalize(s.direction));
-    if (t < s.end_radius * s.sin_phi || t > m.core->collar_position[k]) continue;
+    if (t < s.end_radius * s.sin_phi) continue;
     const double r = s.radius_at(t);
-    if (qq - t * t <= r * r) return true;
+    if (!(qq - t * t <= r * r)) continue;
+    if (t > m.core->collar_position[k]) return false;  // beyond the collar disk: the beam's
+    inside = true;
   }
-  return false;
+  return inside;
 }
 
 // How far the member reaches from its center (canonical units): along a stump the distance is convex in the

@@ -59,7 +59,8 @@ struct LatticeBrep {
   BrepBuildStats stats;
 };
 
-// The whole lattice. Hubs whose exit circles overlap (the hull model, crowded hubs) are built from cores; any
+// The whole lattice. Hubs whose exit circles overlap (the hull model, crowded hubs) are built from cores; hubs
+// joined by beams too short for their collars get tight collars, or are built as one (groups of up to 64); any
 // other issue of the clean check (elements meeting foreign ones) throws InvalidInput naming the first offenders.
 LatticeBrep build_lattice_brep(const FlatLattice& lattice, SeamPreference seams = SeamPreference::FewestCrossings,
                                Progress& progress = no_progress());
