@@ -15,13 +15,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <random>
 #include <sstream>
 #include <string>
 #include <tuple>
 
 #include "brep/cusp_tolerance.hpp"
 #include "brep/pcurve_pieces.hpp"
+#include "properties/box_sampling.hpp"
 #include "steady/core/errors.hpp"
 
 namespace steady {
@@ -65,34 +65,23 @@ double member_reach(const GroupMember& m) {
   return reach;
 }
 
-// The group's volume by sampling its box (a fixed seed, so runs repeat) and the estimate's standard error.
-std::pair<double, double> sampled_volume(const std::vector<GroupMember>& members, std::uint64_t seed) {
-  Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+// The group's volume by sampling its box [lo, hi] (a fixed seed, so runs repeat) and the estimate's standard error.
+std::pair<double, double> sampled_volume(const std::vector<GroupMember>& members, const Vec3& lo, const Vec3& hi,
+                                         std::uint64_t seed) {
   std::vector<double> reach2;
   std::vector<Mat3> inverse;
   for (const GroupMember& m : members) {
     const double reach = m.radius * member_reach(m);
-    lo = glm::min(lo, m.center - Vec3(reach));
-    hi = glm::max(hi, m.center + Vec3(reach));
     reach2.push_back(reach * reach);
     inverse.push_back(glm::inverse(m.rotation));
   }
-  std::mt19937_64 random(0x9e3779b97f4a7c15ull ^ seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  int hits = 0;
-  for (int i = 0; i < kSamples; ++i) {
-    const Vec3 p = lo + (hi - lo) * Vec3(unit(random), unit(random), unit(random));
+  return sampled_box_volume(lo, hi, kSamples, 0x9e3779b97f4a7c15ull ^ seed, [&](const Vec3& p) {
     for (std::size_t k = 0; k < members.size(); ++k) {
       const Vec3 d = p - members[k].center;
-      if (glm::dot(d, d) <= reach2[k] && inside_member(members[k], inverse[k], p)) {
-        ++hits;
-        break;
-      }
+      if (glm::dot(d, d) <= reach2[k] && inside_member(members[k], inverse[k], p)) return true;
     }
-  }
-  const double box = (hi.x - lo.x) * (hi.y - lo.y) * (hi.z - lo.z);
-  const double fraction = static_cast<double>(hits) / kSamples;
-  return {box * fraction, box * std::sqrt(std::max(fraction * (1.0 - fraction), 1.0 / kSamples) / kSamples)};
+    return false;
+  });
 }
 
 double solid_volume(const TopoDS_Shape& shape) {
@@ -184,7 +173,6 @@ HubGroup fuse_once(const std::vector<GroupMember>& members, const std::vector<To
       continue;
     }
     b.Add(out.faces, face);
-    ++out.face_count;
   }
   for (std::size_t i = 0; i < members.size(); ++i)
     for (std::size_t k = 0; k < members[i].stumps.size(); ++k)
@@ -194,23 +182,20 @@ HubGroup fuse_once(const std::vector<GroupMember>& members, const std::vector<To
            << ", " << members[i].center.y << ", " << members[i].center.z << ")";
         fail_input("hub", os.str());
       }
-  out.volume = solid_volume(result);
-  out.sampled_volume = bounds.sampled;
-  out.sampled_sigma = bounds.sigma;
+  const double volume = solid_volume(result);
   const double slack = 1e-7 * bounds.sum;
   std::ostringstream os;
-  os << "OpenCASCADE's Fuse of " << what << " encloses " << out.volume;
-  if (!(out.volume >= bounds.largest - slack && out.volume <= bounds.sum + slack)) {
+  os << "OpenCASCADE's Fuse of " << what << " encloses " << volume;
+  if (!(volume >= bounds.largest - slack && volume <= bounds.sum + slack)) {
     os << ", outside [" << bounds.largest << ", " << bounds.sum << "]";
     fail_input("hub", os.str());
   }
-  if (!(std::abs(out.volume - bounds.sampled) <= 6.0 * bounds.sigma + 1e-9 * bounds.sum)) {
+  if (!(std::abs(volume - bounds.sampled) <= 6.0 * bounds.sigma + 1e-9 * bounds.sum)) {
     os << " where sampling the hubs gives " << bounds.sampled << " +- " << bounds.sigma;
     fail_input("hub", os.str());
   }
   give_edges_their_own_pcurves(out.faces);  // the Fuse kept the parents' pcurves on split edges
   widen_cusp_vertices(out.faces);
-  out.fuzzy = fuzzy;
   return out;
 }
 
@@ -234,7 +219,7 @@ HubGroup fuse_hub_group(const std::vector<GroupMember>& members, std::uint64_t s
     placed.push_back(BRepBuilderAPI_Transform(closed, hub_placement(m.center, m.radius, m.rotation), Standard_True).Shape());
   }
   bounds.size = glm::length(hi - lo);
-  std::tie(bounds.sampled, bounds.sigma) = sampled_volume(members, seed);
+  std::tie(bounds.sampled, bounds.sigma) = sampled_volume(members, lo, hi, seed);
   std::string first_error;
   for (double fuzzy : kFuzzyRetries) {
     try {

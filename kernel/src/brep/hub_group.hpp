@@ -32,11 +32,7 @@ struct GroupMember {
 
 struct HubGroup {
   TopoDS_Compound faces;                          // an open shell bounded by the outer collars
-  std::int64_t face_count = 0;
   std::vector<std::vector<TopoDS_Edge>> collars;  // per member, per stump: its collar (null when inner)
-  double volume = 0.0;                            // enclosed with the collar disks
-  double sampled_volume = 0.0, sampled_sigma = 0.0;  // the independent estimate it was checked against
-  double fuzzy = 0.0;                             // the Fuse's fuzzy value relative to the group's size (0: exact)
 };
 
 // The transform that places canonical coordinates of a hub (unit ball at the origin) at `center`, scaled by

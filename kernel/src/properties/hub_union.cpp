@@ -20,12 +20,12 @@
 #include <map>
 #include <limits>
 #include <numeric>
-#include <random>
 #include <string>
 #include <tuple>
 
 #include "steady/core/errors.hpp"
 #include "lattice/hub_collars.hpp"
+#include "properties/box_sampling.hpp"
 #include "properties/hub_solid.hpp"
 
 namespace steady {
@@ -152,22 +152,13 @@ std::pair<double, double> monte_carlo_union_volume(const std::vector<Hub>& hubs,
     reach.push_back(far * far);
   }
   constexpr int kSamples = 200000;
-  std::mt19937_64 random(0x5eed + seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  int hits = 0;
-  for (int i = 0; i < kSamples; ++i) {
-    const Vec3 p = lo + (hi - lo) * Vec3(unit(random), unit(random), unit(random));
+  return sampled_box_volume(lo, hi, kSamples, 0x5eed + seed, [&](const Vec3& p) {
     for (std::size_t k = 0; k < hubs.size(); ++k) {
       const Vec3 d = p - hubs[k].ball.center;
-      if (glm::dot(d, d) <= reach[k] && inside_hub(hubs[k], p)) {
-        ++hits;
-        break;
-      }
+      if (glm::dot(d, d) <= reach[k] && inside_hub(hubs[k], p)) return true;
     }
-  }
-  const double box = (hi.x - lo.x) * (hi.y - lo.y) * (hi.z - lo.z);
-  const double fraction = static_cast<double>(hits) / kSamples;
-  return {box * fraction, box * std::sqrt(std::max(fraction * (1.0 - fraction), 1.0 / kSamples) / kSamples)};
+    return false;
+  });
 }
 
 struct NodeKey {
