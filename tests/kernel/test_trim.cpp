@@ -10,7 +10,10 @@
 #include <BRepAlgoAPI_Common.hxx>
 #include <BRepBuilderAPI_Transform.hxx>
 #include <BRep_Builder.hxx>
+#include <TopExp_Explorer.hxx>
 #include <TopoDS_Compound.hxx>
+#include <TopoDS_Shell.hxx>
+#include <TopoDS_Solid.hxx>
 #include <gp_Pln.hxx>
 
 #include <algorithm>
@@ -21,6 +24,7 @@
 #include <sstream>
 
 #include "brep/brep_pieces.hpp"
+#include "brep/part_check.hpp"
 #include "steady/brep/brep_io.hpp"
 #include "steady/core/constants.hpp"
 #include "steady/core/errors.hpp"
@@ -100,6 +104,39 @@ TEST(Trim, ClipIntoBoxMatchesClosedForm) {
     EXPECT_GT(r.stats.inside_hubs, 0);
     EXPECT_GT(r.stats.crossing_hubs, 0);
     EXPECT_GT(r.stats.outside_hubs, 0);
+  }
+}
+
+// The trim checks the part it assembled before handing it out (issue 17: never an invalid shape): a part that
+// lost a face (its shell no longer closed) is refused with a message naming the hubs nearest the trouble, as a
+// std::runtime_error, so that the trim tries its other ways first. The same part whole passes, with or without
+// the round trip through BREP text that parts with crowded cores take.
+TEST(Trim, AnAssembledPartThatIsNotValidIsRefused) {
+  const FlatLattice f = grid_lattice(2);
+  const TrimResult whole = trim_lattice(f, box(-0.4, 1.4), {});
+  EXPECT_NO_THROW(check_trimmed_part(f, whole.part, 0));
+  EXPECT_NO_THROW(check_trimmed_part(f, whole.part, 1));
+  BRep_Builder b;
+  TopoDS_Shell shell;
+  b.MakeShell(shell);
+  int faces = 0;
+  for (TopExp_Explorer x(whole.part, TopAbs_FACE); x.More(); x.Next())
+    if (faces++ != 3) b.Add(shell, x.Current());
+  shell.Closed(Standard_False);
+  TopoDS_Solid broken;
+  b.MakeSolid(broken);
+  b.Add(broken, shell);
+  for (std::int64_t core_hubs : {0, 1}) {
+    try {
+      check_trimmed_part(f, broken, core_hubs);
+      ADD_FAILURE() << "a part with a face missing was handed out";
+    } catch (const InvalidInput& e) {
+      ADD_FAILURE() << "an invalid trimmed part is the build's failure, not the input's: " << e.what();
+    } catch (const std::runtime_error& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("the trimmed part is invalid"), std::string::npos) << message;
+      EXPECT_NE(message.find("shell"), std::string::npos) << message;
+    }
   }
 }
 

@@ -1,7 +1,8 @@
 """Issue 17's robustness sweep: crowded hubs of every preset, node radius, beam/node ratio and kind of step.
 
 Each case builds the lattice's B-rep (no body) and checks it against the closed-form properties: one valid solid
-per connected lattice, volume equal to the exact one to 1e-7 relative. A case either passes, builds a lattice
+per connected lattice, volume equal to the exact one to 1e-7 relative (5e-7 where the properties fuse overlapping
+hubs themselves, see FUSED_REFERENCE_TOLERANCE). A case either passes, builds a lattice
 whose properties cannot be computed (then checked against sampling its membership), is refused because elements of
 different hubs meet (the clean check's business, not a hub's), is refused because a beam is too short for the
 collars of its two crowded hubs (the message must name the beam), or fails.
@@ -18,6 +19,12 @@ import numpy as np
 import steadylattice as sl
 
 VOLUME_TOLERANCE = 1e-7
+# Where hubs of different nodes overlap, properties() is no closed form either: it fuses the overlapping hubs with
+# OpenCASCADE and integrates the result, and the approximated intersection curves of two different Fuses disagree
+# by about 1e-7. Measured on the octet at node 0.45, beam/node 0.7, translation (32 hubs in one cluster): the B-rep
+# 5.6e-8 below and the properties 5.8e-8 above a brute-force Fuse of all 48 balls and 192 cylinders (all three
+# integrated to 1e-9). Against such a reference the tolerance is 5e-7.
+FUSED_REFERENCE_TOLERANCE = 5e-7
 PRESETS = ["cubic", "BCC", "FCC", "octet", "diamond", "Kelvin"]
 
 
@@ -47,7 +54,7 @@ def lattice(preset, node_fraction, ratio, step, counts):
 
 
 def run_case(preset, node_fraction, ratio, step, counts=(2, 2, 2)):
-    """(outcome, detail, seconds): outcome is 'built' (the exact volume to 1e-7), 'sampled' (built, but the
+    """(outcome, detail, seconds): outcome is 'built' (the properties' volume to 1e-7, or 5e-7 where they are fused), 'sampled' (built, but the
     lattice's properties cannot be computed: its volume within 5 sigma of sampling), 'foreign', 'too short' or
     'failed'."""
     lat = lattice(preset, node_fraction, ratio, step, counts)
@@ -71,7 +78,7 @@ def run_case(preset, node_fraction, ratio, step, counts=(2, 2, 2)):
         stats["core_hubs"], stats["distinct_cores"], stats["fused_cores"], stats["tight_cores"],
         stats["grouped_hubs"], stats["hub_groups"])
     try:
-        exact = lat.properties()["volume"]
+        reference = lat.properties()
     except (ValueError, RuntimeError) as error:
         # properties() fuses overlapping hubs of other nodes with OpenCASCADE and refuses when that Fuse loses
         # volume (the hull model's tangent cones): the part is then checked against sampling its membership.
@@ -81,9 +88,13 @@ def run_case(preset, node_fraction, ratio, step, counts=(2, 2, 2)):
         if not props["valid"] or props["solids"] != 1 or not abs(props["volume"] - estimate) <= 5 * sigma:
             return "failed", "valid %s, %d solids, %s" % (props["valid"], props["solids"], detail), seconds
         return "sampled", detail, seconds
-    error = abs(props["volume"] / exact - 1.0)
+    error = abs(props["volume"] / reference["volume"] - 1.0)
+    tolerance = VOLUME_TOLERANCE
+    if reference["union_clusters"]:
+        tolerance = FUSED_REFERENCE_TOLERANCE
+        detail += ", properties fused %d hubs" % reference["union_hubs"]
     detail += ", volume error %.1e" % error
-    if not props["valid"] or props["solids"] != 1 or not error <= VOLUME_TOLERANCE:
+    if not props["valid"] or props["solids"] != 1 or not error <= tolerance:
         return "failed", "valid %s, %d solids, %s" % (props["valid"], props["solids"], detail), seconds
     return "built", detail, seconds
 

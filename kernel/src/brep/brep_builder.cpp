@@ -34,6 +34,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "brep/part_check.hpp"
 #include "brep/pcurve_pieces.hpp"
 #include "brep/sphere_pcurve.hpp"
 #include "steady/lattice/beam_frustum.hpp"
@@ -1222,71 +1223,6 @@ TopoDS_Shape solids_from_faces(const std::vector<TopoDS_Face>& faces, Progress& 
   for (const TopoDS_Solid& s : solids) b.Add(compound, s);
   return compound;
 }
-
-namespace {
-
-// Connected components of the lattice: balls joined by beams (a degenerate beam joins a ball to the one it is
-// nested in). A built lattice has one solid for each.
-std::int64_t component_count(const FlatLattice& f) {
-  std::vector<std::int64_t> parent(f.ball_count());
-  for (std::int64_t i = 0; i < f.ball_count(); ++i) parent[i] = i;
-  auto root = [&](std::int64_t i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  };
-  std::int64_t count = f.ball_count();
-  for (const FlatBeam& b : f.beams) {
-    const std::int64_t ra = root(b.a), rb = root(b.b);
-    if (ra != rb) parent[ra] = rb, --count;
-  }
-  return count;
-}
-
-// Balls nearest to the invalid faces of `shape` (at most `limit` of them), to name the hubs in an error.
-std::vector<std::int64_t> balls_near_invalid_faces(const FlatLattice& f, const TopoDS_Shape& shape, int limit) {
-  std::vector<std::int64_t> out;
-  for (TopExp_Explorer x(shape, TopAbs_FACE); x.More() && static_cast<int>(out.size()) < limit; x.Next()) {
-    if (BRepCheck_Analyzer(x.Current()).IsValid()) continue;
-    Bnd_Box box;
-    BRepBndLib::Add(x.Current(), box);
-    double x0, y0, z0, x1, y1, z1;
-    box.Get(x0, y0, z0, x1, y1, z1);
-    const Vec3 mid(0.5 * (x0 + x1), 0.5 * (y0 + y1), 0.5 * (z0 + z1));
-    std::int64_t best = 0;
-    for (std::int64_t i = 1; i < f.ball_count(); ++i)
-      if (glm::length(f.balls[i].center - mid) < glm::length(f.balls[best].center - mid)) best = i;
-    if (std::find(out.begin(), out.end(), best) == out.end()) out.push_back(best);
-  }
-  return out;
-}
-
-// Never an invalid shape handed out: one solid per connected component, always; and, where crowded hubs were
-// built from cores (a Fuse of OpenCASCADE's, which has returned wrong shapes that it reported as done), a valid
-// shape as it reads back from its BREP text: the text keeps 15 digits, and a core whose edges met in a cusp was
-// valid in memory and invalid once read (docs/brep.md, section 6); the text costs less than the check itself.
-// (The Boolean-free faces of clean hubs are valid by construction and tested so; checking them all would cost as
-// much as the build.) A failure is an error naming the hubs, never a silent part.
-void check_built_lattice(const FlatLattice& f, const LatticeBrep& built) {
-  const std::int64_t solids = solid_count(built.shape), components = component_count(f);
-  TopoDS_Shape as_read;
-  if (built.stats.core_hubs > 0) as_read = brep_from_text(brep_to_text(built.shape), "lattice");
-  const bool valid = as_read.IsNull() || is_valid(as_read);
-  if (valid && solids == components) return;
-  std::ostringstream os;
-  os << "the B-rep built for this lattice ";
-  if (!valid) {
-    os << "is invalid near balls";
-    for (std::int64_t b : balls_near_invalid_faces(f, as_read, 5)) os << " " << b;
-    os << " (" << built.stats.core_hubs << " crowded hubs built from cores)";
-  } else {
-    os << "has " << solids << " solids for " << components << " connected components";
-  }
-  os << "; crowded hubs whose beams are nearly as thick as their nodes are not all built yet: thin the beams or "
-        "enlarge the nodes";
-  fail_input("lattice", os.str());
-}
-
-}  // namespace
 
 LatticeBrep build_lattice_brep(const FlatLattice& lattice, SeamPreference seams, Progress& progress) {
   // Units: the clean check 5, the faces 40, the solids 55 (measured shares, roughly: grouping the faces into

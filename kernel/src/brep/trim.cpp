@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <unordered_set>
 
+#include "brep/part_check.hpp"
 #include "brep/pcurve_pieces.hpp"
 #include "brep/loose_pieces.hpp"
 #include "brep/trim_phases.hpp"
@@ -159,6 +160,11 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
   {
     Progress part(progress, budget.rest(weights.assemble));
     shape = solids_from_faces(faces, part);
+  }
+  {
+    const auto check_clock = std::chrono::steady_clock::now();
+    check_trimmed_part(f, shape, stats.core_hubs);
+    report(options, "trim: checked the assembled part in " + std::to_string(seconds_since(check_clock)) + " s");
   }
   if (bodies.skin && !options.unite_skin) {
     const auto pieces_clock = std::chrono::steady_clock::now();
