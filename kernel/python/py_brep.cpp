@@ -85,6 +85,7 @@ void fill_stats(const steady::TrimStats& s, py::dict& d) {
   d["removed_beams"] = s.removed_beams;
   d["band_clusters"] = s.band_clusters;
   d["moved_cuts"] = s.moved_cuts;
+  d["joined_band_hubs"] = s.joined_band_hubs;
   d["retried_clusters"] = s.retried_clusters;
   d["relaid_clusters"] = s.relaid_clusters;
   d["turned_clusters"] = s.turned_clusters;

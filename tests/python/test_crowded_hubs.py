@@ -6,6 +6,7 @@ cases) with STEADY_LONG_TESTS=1 (scripts/test.sh --long).
 import os
 import re
 
+import numpy as np
 import pytest
 
 import crowded_sweep
@@ -117,3 +118,42 @@ def test_a_fuse_that_loses_volume_is_an_error_never_a_silent_figure():
         return
     mc, sigma = monte_carlo_volume(lat)
     assert abs(p["volume"] - mc) < 4 * sigma
+
+
+DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data")
+DENSE_BOX = (0.325, 1.75)  # tests/python/data/dense_box.brep: corner (each coordinate) and edge
+
+
+def sampled_trimmed_volume(lat, part_box, skin, n=400_000, seed=7):
+    """Volume of (lattice inside the box's inner offset) united with the box's skin, by sampling the kernel's point
+    membership and the box's own inequalities over the part's bounding box; and its standard error."""
+    rng = np.random.default_rng(seed)
+    lo, hi = part_box
+    points = lo + rng.random((n, 3)) * (hi - lo)
+    corner, edge = DENSE_BOX
+    inside = np.all((points > corner) & (points < corner + edge), axis=1)
+    inner = np.all((points > corner + skin) & (points < corner + edge - skin), axis=1)
+    f = (inside & (~inner | np.asarray(lat.contains(points), bool))).mean()
+    box = float(np.prod(hi - lo))
+    return f * box, box * np.sqrt(f * (1 - f) / n)
+
+
+@pytest.mark.parametrize("preset, ratio, step, skin", [("BCC", 1.0, "translation", 0.0), ("BCC", 1.0, "translation", 0.1),
+                                                       ("octet", 0.8, "screw", 0.1)])
+def test_dense_lattices_with_beams_too_short_for_a_cut_are_trimmed(preset, ratio, step, skin):
+    """Beams with no room for a cut between their crowded hubs' collars were refused by the trim ("too short for the
+    collar"): they are never cut now, their hubs share a cluster of the band (an inside hub joined so to a crossing
+    one joins the band), and the band has tight collars and groups of hubs as the whole lattice has. Checked
+    against sampling the lattice's membership and the box."""
+    lat = crowded_sweep.lattice(preset, 0.35, ratio, step, (3, 3, 3))
+    with open(os.path.join(DATA, "dense_box.brep")) as f:
+        box = f.read()
+    stats = {}
+    props = sl.brep_properties(lat.brep(body=box, skin=skin, stats=stats))
+    assert props["valid"], props
+    if skin:
+        assert props["solids"] == 1, props
+    assert stats["joined_band_hubs"] > 0 and stats["tight_cores"] > 0, stats
+    corner, edge = DENSE_BOX
+    estimate, sigma = sampled_trimmed_volume(lat, (np.full(3, corner), np.full(3, corner + edge)), skin)
+    assert abs(props["volume"] - estimate) <= 5 * sigma, (props["volume"], estimate, sigma)

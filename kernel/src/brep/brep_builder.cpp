@@ -1114,15 +1114,16 @@ std::vector<double> stump_starts(const FlatLattice& f, const std::vector<BeamFru
   return starts;
 }
 
-void place_cuts_between_collars(const FlatLattice& f, std::vector<BeamFrustum>& frustums) {
+std::vector<char> place_cuts_between_collars(const FlatLattice& f, std::vector<BeamFrustum>& frustums) {
   std::vector<HubGeometry> hubs(f.ball_count());
   std::vector<std::vector<std::pair<std::int64_t, int>>> stumps(f.ball_count());
   tbb::parallel_for(std::int64_t(0), f.ball_count(), [&](std::int64_t i) {
     hubs[i] = hub_geometry(f, frustums, i, [&](std::int64_t e) { return frustums[e].exists; }, stumps[i]);
   });
+  std::vector<char> no_room(f.beam_count(), 0);
   bool crowded = false;
   for (const HubGeometry& g : hubs) crowded = crowded || g.kind != 0;
-  if (!crowded) return;
+  if (!crowded) return no_room;
   const HubCatalog catalog = catalog_hubs(hubs);
   std::vector<std::vector<double>> collars(catalog.shapes.size());
   tbb::parallel_for(std::size_t(0), catalog.shapes.size(), [&](std::size_t s) {
@@ -1148,7 +1149,9 @@ void place_cuts_between_collars(const FlatLattice& f, std::vector<BeamFrustum>& 
     const double to = fr.cone.length - (std::isnan(start[2 * e + 1]) ? fr.exit_b : start[2 * e + 1]);
     const double x = fr.cut_position(), moved = cut_between_collars(from, to, x);
     if (moved != x) fr.cut_fraction = (moved - fr.exit_a) / fr.length();
+    no_room[e] = !(from < to);
   }
+  return no_room;
 }
 
 TopoDS_Shape solids_from_faces(const std::vector<TopoDS_Face>& faces, Progress& progress) {

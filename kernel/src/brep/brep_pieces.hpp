@@ -27,9 +27,10 @@ struct BrepSelection {
   std::vector<char> open_cuts;  // per beam (or empty): leave its cut open, for gluing; other cuts get a disk
   std::vector<double> cut_fractions;  // per beam (or empty: halfway): where its cut lies, BeamFrustum::cut_fraction
   SeamPreference seams = SeamPreference::FewestCrossings;  // where spherical faces put their seams
-  // Whole beams too short for their hubs' collars: tight collars, then hubs built as one (brep_builder.cpp). Off
-  // for the pieces trimming's Booleans clip: thin bands of cone between a stump's envelope and a tight collar make
-  // slivers those Booleans fail to split (docs/brep.md, "hub cores"); such beams are then refused.
+  // Whole beams too short for their hubs' collars: tight collars, then hubs built as one (brep_builder.cpp). The
+  // trim's band has them too: such beams are never cut there, their hubs share a cluster (assign_roles), and the
+  // thin bands of cone between a stump's envelope and a tight collar, which the Booleans may fail to split, are
+  // caught by the clusters' checks and the check of the assembled part (part_check.hpp).
   bool crowded_fallbacks = true;
   static BrepSelection everything(const FlatLattice& lattice);
 };
@@ -71,7 +72,8 @@ std::vector<double> stump_starts(const FlatLattice& lattice, const std::vector<B
 
 // Moves the cut of every beam whose halfway cut lies within a crowded hub's collar (thick beams between crowded
 // hubs) to halfway between its two hubs' stump starts, with the whole lattice's hubs (each distinct shape's
-// collars computed once). Beams too short for both collars keep their cut; the build names them.
-void place_cuts_between_collars(const FlatLattice& lattice, std::vector<BeamFrustum>& frustums);
+// collars computed once). Beams too short for both collars keep their cut: returned, per beam, as 1 (no room for
+// a cut between the two collars; the build gives their hubs tight collars, or builds them as one).
+std::vector<char> place_cuts_between_collars(const FlatLattice& lattice, std::vector<BeamFrustum>& frustums);
 
 }  // namespace steady

@@ -55,7 +55,6 @@ BuiltHubs build_hubs(const FlatLattice& f, const HubRoles& roles, const CutPlan&
     sel.split = plan.split;
     sel.cut_fractions = plan.cut_fractions;
     sel.seams = seams;
-    sel.crowded_fallbacks = false;  // the band is clipped by Booleans
     Progress part(budget.progress(), budget.rest(weights.build_band));
     out.band = build_brep_pieces(f, sel, out.cuts, part);
   }
@@ -127,11 +126,11 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
   const Bodies bodies = make_bodies(body_shape, options, budget);
   if (bodies.skin) out.skin = bodies.skin->skin;
   std::vector<BeamFrustum> frustums = beam_frustums(f);  // place_cuts moves some cuts
-  place_cuts_between_collars(f, frustums);               // before the hubs' reach is classified
+  const std::vector<char> no_room = place_cuts_between_collars(f, frustums);  // before the hubs' reach is classified
   const std::vector<char> absorbed = absorbed_balls(f, frustums);
   const HubStates states = classify(f, frustums, absorbed, bodies, stats, budget);
   stats.classify_seconds = seconds_since(clock);
-  const HubRoles roles = assign_roles(f, frustums, states, options, bodies.skin.has_value(), stats);
+  const HubRoles roles = assign_roles(f, frustums, states, no_room, options, bodies.skin.has_value(), stats);
   const bool unite = bodies.skin && options.unite_skin;
   const WorkWeights weights = work_weights(f, roles, options, unite);
   budget.share_rest(weights.total());

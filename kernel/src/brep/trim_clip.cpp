@@ -156,6 +156,26 @@ std::vector<char> clusters_on_rims(const ClipContext& c) {
   return out;
 }
 
+bool is_empty(const TopoDS_Shape& shape) { return !TopExp_Explorer(shape, TopAbs_FACE).More(); }
+
+// Per cluster: whether a ball of it has its centre inside the tool (the clip's boundary), farther from the
+// boundary than the Booleans' tolerances. The first such ball of each cluster is enough; balls whose centre is
+// near the boundary by the fast bound are skipped (the classifier and the exact distance are serial).
+std::vector<char> clusters_that_cannot_be_empty(const ClipContext& c) {
+  std::vector<char> out(c.clusters.faces.size(), 0);
+  const SolidBody* boundary = c.plan.boundary;
+  if (!boundary) return out;
+  const double margin = 1e-6 * boundary->size();
+  for (std::int64_t i = 0; i < c.f.ball_count(); ++i) {
+    if (!c.roles.band[i]) continue;
+    const auto found = c.clusters.index.find(c.plan.cluster_root[i]);
+    if (found == c.clusters.index.end() || out[found->second]) continue;
+    const Vec3& center = c.f.balls[i].center;
+    if (boundary->distance_lower_bound(center) > margin && boundary->contains(center)) out[found->second] = 1;
+  }
+  return out;
+}
+
 // The Common of cluster k (its unclipped solid) with the tool; marked failed for the retries when it fails or its
 // result does not pass cluster_result_ok.
 void clip_one(const ClipContext& c, std::size_t k, ClusterClips& clips, CutDisks& disks, Progress& progress) {
@@ -168,7 +188,8 @@ void clip_one(const ClipContext& c, std::size_t k, ClusterClips& clips, CutDisks
   Progress boolean(progress, 9);
   const std::optional<TopoDS_Shape> clipped = try_boolean(op, clips.unclipped[k], copy, clips.what, boolean);
   const int cluster_id = static_cast<int>(k);
-  if (!clipped || (c.options.verify_booleans && !disks.cluster_result_ok(op, *clipped, cluster_id, 0))) {
+  if (!clipped || (c.options.verify_booleans && !disks.cluster_result_ok(op, *clipped, cluster_id, 0)) ||
+      (clips.cannot_be_empty[k] && is_empty(*clipped))) {
     clips.failed[k] = 1;  // tried again (retry_failed_clusters)
   } else {
     clips.results[k] = *clipped;
@@ -190,6 +211,7 @@ ClusterClips clip_clusters(const ClipContext& c, CutDisks& disks, Progress& prog
   clips.results.resize(count);
   clips.unclipped.resize(count);
   clips.failed.assign(count, 0);
+  clips.cannot_be_empty = clusters_that_cannot_be_empty(c);
   clips.cut_faces.resize(count);
   clips.as_holes.assign(count, 0);
   clips.on_rim = clusters_on_rims(c);
@@ -229,7 +251,6 @@ std::vector<std::vector<TopoDS_Face>> second_layout_faces(const ClipContext& c, 
   other.split = c.plan.split;
   other.cut_fractions = c.plan.cut_fractions;
   other.seams = seams == SeamPreference::FewestCrossings ? SeamPreference::MostCrossings : SeamPreference::FewestCrossings;
-  other.crowded_fallbacks = false;  // as the band's first layout
   second = build_brep_pieces(f, other, cuts);
   for (const auto& [beam, count] : vertices_before)
     if (cuts.at(beam).vertices.size() != count)
@@ -271,6 +292,7 @@ bool retry_cluster(const ClipContext& c, std::size_t k, const TopoDS_Shape (&lay
     if (!clipped) continue;
     clips.results[k] = clipped->Moved(frame.Inverted());
     if (!disks.cluster_result_ok(op, clips.results[k], cluster, attempt.layout, frame)) continue;
+    if (clips.cannot_be_empty[k] && is_empty(clips.results[k])) continue;
     disks.track(op, clips.results[k], cluster, frame);
     find_cut_faces(c, op, tool_copy, k, clips);
     clips.unclipped[k] = layouts[attempt.layout];
@@ -306,8 +328,9 @@ void retry_failed_clusters(const ClipContext& c, SeamPreference seams, CutEdges&
     }
     throw std::runtime_error("trim: the Common of boundary cluster " + std::to_string(k) + " (of " +
                              std::to_string(count) +
-                             ") misclassified a disk it did not touch, or produced invalid faces, with both layouts "
-                             "of its spheres, in turned frames and with fuzzy values");
+                             ") misclassified a disk it did not touch, produced invalid faces, or kept nothing of "
+                             "hubs inside the body, with both layouts of its spheres, in turned frames and with fuzzy "
+                             "values");
   });
   stats.retried_clusters += counts.retried;  // += : the rim clusters may be retried later (clip_rim_clusters)
   stats.relaid_clusters += counts.relaid;

@@ -90,7 +90,7 @@ CutPlan place_cuts(const FlatLattice& f, const HubRoles& roles, const Bodies& bo
   for (std::int64_t e = 0; e < f.beam_count(); ++e) {
     if (!roles.beam_kept[e] || !roles.band[f.beams[e].a] || !roles.band[f.beams[e].b]) continue;
     progress.advance();
-    if (!plan.boundary) {
+    if (!plan.boundary || roles.no_room[e]) {  // no room: built whole, its hubs in one cluster
       roots.join(f.beams[e].a, f.beams[e].b);
       continue;
     }

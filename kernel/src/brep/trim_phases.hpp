@@ -91,11 +91,14 @@ struct HubRoles {
   std::vector<char> beam_kept;       // per beam
   std::vector<char> band_beams, interior_beams;  // per beam: attached to a band / an interior hub
   std::vector<char> open_cuts;       // per beam between a band and an interior hub: glued at its cut
+  std::vector<char> no_room;         // per beam: no room for a cut between its crowded hubs' collars (never cut)
   bool has_band = false;
 };
+// `no_room`: place_cuts_between_collars's beams with no room for a cut. Their two hubs are built together (tight
+// collars, or one group of hubs), so an interior hub joined by one to a band hub joins the band.
 // InvalidInput naming "body" (the lattice misses it), "policy" or "skin" (nothing is kept).
 HubRoles assign_roles(const FlatLattice& f, const std::vector<BeamFrustum>& frustums, const HubStates& states,
-                      const TrimOptions& options, bool has_skin, TrimStats& stats);
+                      const std::vector<char>& no_room, const TrimOptions& options, bool has_skin, TrimStats& stats);
 
 // The estimates of what follows the roles, relative to building one element (docs/brep.md).
 struct WorkWeights {
@@ -184,6 +187,9 @@ struct ClusterClips {
   std::vector<TopoDS_Shape> results;    // per cluster: clipped
   std::vector<TopoDS_Shape> unclipped;  // per cluster: its pieces, of the layout that was clipped
   std::vector<char> failed;             // per cluster: the first Common failed (retried)
+  // Per cluster: one of its balls has its centre inside the tool, clear of the boundary, so its Common cannot be
+  // empty. OpenCASCADE's Common of a dense cluster with a cylinder has returned nothing, and reported success.
+  std::vector<char> cannot_be_empty;
   std::vector<std::vector<CutFace>> cut_faces;  // per cluster, with a skin: its faces on the inner boundary
   std::vector<char> as_holes;           // per cluster: those cut faces can be holes in the skin
   // Per cluster, with a skin: it reaches an edge, seam or vertex of the inner boundary (within its hubs' bounding

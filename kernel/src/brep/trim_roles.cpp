@@ -203,7 +203,7 @@ HubCounts count_hubs(const HubStates& states) {
 }
 
 HubRoles assign_roles(const FlatLattice& f, const std::vector<BeamFrustum>& frustums, const HubStates& states,
-                      const TrimOptions& options, bool has_skin, TrimStats& stats) {
+                      const std::vector<char>& no_room, const TrimOptions& options, bool has_skin, TrimStats& stats) {
   // Hubs: interior hubs are built whole with no Boolean; band hubs go through the Booleans.
   const std::int64_t n = f.ball_count();
   HubRoles r;
@@ -225,6 +225,36 @@ HubRoles assign_roles(const FlatLattice& f, const std::vector<BeamFrustum>& frus
       r.band[i] = has_skin && o == HubState::Inside && s == HubState::Crossing;
     }
   }
+  // A beam with no room for a cut between its hubs' collars cannot be glued, or end, at a cut: its two hubs are
+  // built in one piece (tight collars, or a group fused as one), so both go through the band's Booleans. Along
+  // chains of such beams (a dense octet at beam/node 1.0 has nothing else) the band grows until no interior hub is
+  // joined so to a band hub. When clipping with dangling beams kept, a dropped hub joined so to a kept one joins
+  // the band too (the Boolean removes it); it pulls in nothing more, and its beams to other dropped hubs, outside
+  // like both their hubs' reach, are not kept.
+  r.no_room = no_room;
+  std::vector<char> pulled_in(n, 0);
+  const bool pull_dropped = options.policy == TrimPolicy::Clip && options.dangling == DanglingBeams::Keep;
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (std::int64_t e = 0; e < f.beam_count(); ++e) {
+      if (!no_room[e] || !frustums[e].exists) continue;
+      const std::int64_t a = f.beams[e].a, b = f.beams[e].b;
+      for (const auto& [kept, other] : {std::pair{a, b}, std::pair{b, a}}) {
+        const bool kept_hub = r.band[kept] || r.interior[kept];
+        const bool dropped = !r.band[other] && !r.interior[other] && states.outer[other] != HubState::Absent;
+        if (r.band[kept] && r.interior[other]) {
+          r.interior[other] = 0;
+        } else if (!(pull_dropped && kept_hub && !pulled_in[kept] && dropped)) {
+          continue;
+        } else {
+          pulled_in[other] = 1;
+        }
+        r.band[other] = 1;
+        ++stats.joined_band_hubs;
+        grew = true;
+      }
+    }
+  }
   r.has_band = std::any_of(r.band.begin(), r.band.end(), [](char c) { return c; });
   const bool nothing_kept = !r.has_band && std::none_of(r.interior.begin(), r.interior.end(), [](char c) { return c; });
   if (nothing_kept) {
@@ -241,7 +271,7 @@ HubRoles assign_roles(const FlatLattice& f, const std::vector<BeamFrustum>& frus
     if (!frustums[e].exists) continue;
     const std::int64_t a = f.beams[e].a, b = f.beams[e].b;
     const bool ka = r.interior[a] || r.band[a], kb = r.interior[b] || r.band[b];
-    if (!ka && !kb) continue;
+    if ((!ka || pulled_in[a]) && (!kb || pulled_in[b])) continue;
     if ((!ka || !kb) && options.dangling == DanglingBeams::Remove) {
       ++stats.removed_beams;
       continue;

@@ -18,6 +18,9 @@ bodies = {
     # Conformal fills with bridges (test_bridge.py): a cylinder and a cone frustum about the z axis.
     "bridge_cylinder.brep": Part.makeCylinder(20.0, 22.0, FreeCAD.Vector(0, 0, -1)),
     "bridge_cone.brep": Part.makeCone(22.0, 8.0, 28.0),
+    # Dense 3 x 3 x 3 lattices of unit cells (centres 0 to 2.5) trimmed with beams too short for a cut
+    # (test_crowded_hubs.py): a box across the middle.
+    "dense_box.brep": Part.makeBox(1.75, 1.75, 1.75, FreeCAD.Vector(0.325, 0.325, 0.325)),
 }
 for name, shape in bodies.items():
     with open(os.path.join(here, name), "w") as f:
