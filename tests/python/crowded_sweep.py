@@ -7,10 +7,12 @@ whose properties cannot be computed (then checked against sampling its membershi
 different hubs meet (the clean check's business, not a hub's), is refused because a beam is too short for the
 collars of its two crowded hubs (the message must name the beam), or fails.
 
-`python3 crowded_sweep.py [--long]` prints every case and the counts; test_crowded_hubs.py runs the short sweep.
+`python3 crowded_sweep.py [--long] [--trim]` prints every case and the counts (--trim: each design trimmed into a box
+with a skin instead, checked against sampling); test_crowded_hubs.py runs the short sweep.
 """
 import itertools
 import math
+import os
 import sys
 import time
 
@@ -54,9 +56,9 @@ def lattice(preset, node_fraction, ratio, step, counts):
 
 
 def run_case(preset, node_fraction, ratio, step, counts=(2, 2, 2)):
-    """(outcome, detail, seconds): outcome is 'built' (the properties' volume to 1e-7, or 5e-7 where they are fused), 'sampled' (built, but the
-    lattice's properties cannot be computed: its volume within 5 sigma of sampling), 'foreign', 'too short' or
-    'failed'."""
+    """(outcome, detail, seconds): outcome is 'built' (the properties' volume to 1e-7, or 5e-7 where they are
+    fused), 'sampled' (built, but the lattice's properties cannot be computed: its volume within 5 sigma of
+    sampling), 'foreign', 'too short' or 'failed'."""
     lat = lattice(preset, node_fraction, ratio, step, counts)
     start = time.perf_counter()
     try:
@@ -127,11 +129,54 @@ def long_cases():
     return list(itertools.product(PRESETS, [0.25, 0.35, 0.45], ratios, kinds))
 
 
-def sweep(cases, out=sys.stdout):
+# The trimmed sweep's body (tests/python/data/dense_box.brep): a box across the middle of 3 x 3 x 3 unit cells.
+TRIM_BOX = (0.325, 1.75)  # corner (each coordinate) and edge
+TRIM_SKIN = 0.1
+
+
+def sampled_trimmed_volume(lat, skin, n=400_000, seed=7):
+    """Volume of the lattice inside the box's inner offset, united with the box's skin, by sampling the kernel's
+    point membership and the box's own inequalities; and its standard error."""
+    rng = np.random.default_rng(seed)
+    corner, edge = TRIM_BOX
+    points = corner + rng.random((n, 3)) * edge
+    inner = np.all((points > corner + skin) & (points < corner + edge - skin), axis=1)
+    f = (~inner | np.asarray(lat.contains(points), bool)).mean()
+    return f * edge ** 3, edge ** 3 * math.sqrt(f * (1 - f) / n)
+
+
+def run_trim_case(preset, node_fraction, ratio, step):
+    """The same designs (3 x 3 x 3 cells) trimmed into TRIM_BOX with a skin of TRIM_SKIN: 'built' (one valid solid,
+    volume within 5 sigma of sampling), 'foreign', 'too short' or 'failed'."""
+    lat = lattice(preset, node_fraction, ratio, step, (3, 3, 3))
+    with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "dense_box.brep")) as f:
+        box = f.read()
+    start = time.perf_counter()
+    stats = {}
+    try:
+        text = lat.brep(body=box, skin=TRIM_SKIN, stats=stats)
+    except (ValueError, RuntimeError) as error:
+        message = str(error)
+        outcome = "foreign" if "is not clean" in message else "too short" if "too short" in message else "failed"
+        return outcome, message[:300], time.perf_counter() - start
+    seconds = time.perf_counter() - start
+    props = sl.brep_properties(text)
+    estimate, sigma = sampled_trimmed_volume(lat, TRIM_SKIN)
+    detail = "%d cores (%d tight), %d hubs in %d groups, %d joined to the band, %d clusters (%d fuzzy), " \
+             "volume %.5f, sampled %.5f +- %.5f" % (
+                 stats["core_hubs"], stats["tight_cores"], stats["grouped_hubs"], stats["hub_groups"],
+                 stats["joined_band_hubs"], stats["band_clusters"], stats["fuzzy_clusters"], props["volume"],
+                 estimate, sigma)
+    if not props["valid"] or props["solids"] != 1 or not abs(props["volume"] - estimate) <= 5 * sigma:
+        return "failed", "valid %s, %d solids, %s" % (props["valid"], props["solids"], detail), seconds
+    return "built", detail, seconds
+
+
+def sweep(cases, out=sys.stdout, run=run_case):
     counts = {"built": 0, "sampled": 0, "foreign": 0, "too short": 0, "failed": 0}
     results = []
     for case in cases:
-        outcome, detail, seconds = run_case(*case)
+        outcome, detail, seconds = run(*case)
         counts[outcome] += 1
         results.append((case, outcome, detail, seconds))
         print("%-8s node %.2f ratio %-5s %-13s %-9s %6.2f s  %s" % (
@@ -142,4 +187,5 @@ def sweep(cases, out=sys.stdout):
 
 
 if __name__ == "__main__":
-    sweep(long_cases() if "--long" in sys.argv else short_cases())
+    sweep(long_cases() if "--long" in sys.argv else short_cases(),
+          run=run_trim_case if "--trim" in sys.argv else run_case)

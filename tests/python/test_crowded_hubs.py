@@ -6,7 +6,6 @@ cases) with STEADY_LONG_TESTS=1 (scripts/test.sh --long).
 import os
 import re
 
-import numpy as np
 import pytest
 
 import crowded_sweep
@@ -121,25 +120,10 @@ def test_a_fuse_that_loses_volume_is_an_error_never_a_silent_figure():
 
 
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data")
-DENSE_BOX = (0.325, 1.75)  # tests/python/data/dense_box.brep: corner (each coordinate) and edge
 
 
-def sampled_trimmed_volume(lat, part_box, skin, n=400_000, seed=7):
-    """Volume of (lattice inside the box's inner offset) united with the box's skin, by sampling the kernel's point
-    membership and the box's own inequalities over the part's bounding box; and its standard error."""
-    rng = np.random.default_rng(seed)
-    lo, hi = part_box
-    points = lo + rng.random((n, 3)) * (hi - lo)
-    corner, edge = DENSE_BOX
-    inside = np.all((points > corner) & (points < corner + edge), axis=1)
-    inner = np.all((points > corner + skin) & (points < corner + edge - skin), axis=1)
-    f = (inside & (~inner | np.asarray(lat.contains(points), bool))).mean()
-    box = float(np.prod(hi - lo))
-    return f * box, box * np.sqrt(f * (1 - f) / n)
-
-
-@pytest.mark.parametrize("preset, ratio, step, skin", [("BCC", 1.0, "translation", 0.0), ("BCC", 1.0, "translation", 0.1),
-                                                       ("octet", 0.8, "screw", 0.1)])
+@pytest.mark.parametrize("preset, ratio, step, skin",
+                         [("BCC", 1.0, "translation", 0.0), ("BCC", 1.0, "translation", 0.1), ("octet", 0.8, "screw", 0.1)])
 def test_dense_lattices_with_beams_too_short_for_a_cut_are_trimmed(preset, ratio, step, skin):
     """Beams with no room for a cut between their crowded hubs' collars were refused by the trim ("too short for the
     collar"): they are never cut now, their hubs share a cluster of the band (an inside hub joined so to a crossing
@@ -154,6 +138,18 @@ def test_dense_lattices_with_beams_too_short_for_a_cut_are_trimmed(preset, ratio
     if skin:
         assert props["solids"] == 1, props
     assert stats["joined_band_hubs"] > 0 and stats["tight_cores"] > 0, stats
-    corner, edge = DENSE_BOX
-    estimate, sigma = sampled_trimmed_volume(lat, (np.full(3, corner), np.full(3, corner + edge)), skin)
+    estimate, sigma = crowded_sweep.sampled_trimmed_volume(lat, skin)
     assert abs(props["volume"] - estimate) <= 5 * sigma, (props["volume"], estimate, sigma)
+
+
+def test_whole_hubs_whose_dangling_beams_have_no_room_for_a_cut_say_what_to_change():
+    """Keeping hubs whole, a dangling beam ends at its cut; a beam with no room for a cut between its hubs' collars
+    cannot, and the message names it and the two options that build (which then do)."""
+    lat = crowded_sweep.lattice("BCC", 0.35, 1.0, "translation", (3, 3, 3))
+    with open(os.path.join(DATA, "dense_box.brep")) as f:
+        box = f.read()
+    with pytest.raises(ValueError, match=r"dangling: beam \d+ \(balls \d+ and \d+\) has no room .*dangling='remove'"):
+        lat.brep(body=box, policy="whole")
+    for options in ({"policy": "whole", "dangling": "remove"}, {"policy": "clip"}):
+        props = sl.brep_properties(lat.brep(body=box, **options))
+        assert props["valid"] and props["solids"] == 1, (options, props)

@@ -276,6 +276,12 @@ HubRoles assign_roles(const FlatLattice& f, const std::vector<BeamFrustum>& frus
       ++stats.removed_beams;
       continue;
     }
+    // Keeping hubs whole, a dangling beam ends at its cut, which such a beam's kept hub covers with its collar.
+    if (no_room[e] && (!ka || !kb) && options.policy == TrimPolicy::Whole)
+      fail_input("dangling", "beam " + std::to_string(e) + " (balls " + std::to_string(a) + " and " +
+                                 std::to_string(b) + ") has no room for a cut between its crowded hubs' collars, and "
+                                 "only one of its hubs is kept whole: remove dangling beams (dangling='remove'), or "
+                                 "clip (policy 'clip'), which keeps both hubs until the Boolean");
     r.beam_kept[e] = 1;
     r.band_beams[e] = r.band[a] || r.band[b];
     r.interior_beams[e] = r.interior[a] || r.interior[b];

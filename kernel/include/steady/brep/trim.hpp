@@ -71,8 +71,9 @@ struct TrimStats {
                                           // clipped one by one and glued to the skin by a Fuse
   std::int64_t core_hubs = 0, distinct_cores = 0, fused_cores = 0, tight_cores = 0;  // crowded hubs built from cores, and the cores built
   std::int64_t hub_groups = 0, grouped_hubs = 0;  // crowded hubs joined by too short beams, built as one
-  std::int64_t joined_band_hubs = 0;      // inside hubs clipped with the band all the same: a beam with no room
-                                          // for a cut between their collars joins them to a crossing hub
+  std::int64_t joined_band_hubs = 0;      // hubs clipped with the band all the same, joined to it by a beam with
+                                          // no room for a cut between their collars: inside hubs, and (clipping,
+                                          // dangling beams kept) dropped ones for the Boolean to remove
   // With the skin apart (!unite_skin): pieces of the trimmed lattice holding no hub built whole (ends of beams and
   // hubs cut at the inner wall, touching only the skin), given to the skin part, and their volume.
   std::int64_t skin_pieces = 0;
