@@ -64,9 +64,9 @@ TopoDS_Shape as_read_back(const TopoDS_Shape& shape, std::int64_t core_hubs) {
 // cost as much as the build.)
 void check_built_lattice(const FlatLattice& f, const LatticeBrep& built) {
   const std::int64_t solids = solid_count(built.shape), components = component_count(f);
-  TopoDS_Shape as_read;
-  if (built.stats.core_hubs > 0) as_read = as_read_back(built.shape, built.stats.core_hubs);
-  const bool valid = as_read.IsNull() || is_valid(as_read);
+  const bool with_cores = built.stats.core_hubs > 0;
+  const TopoDS_Shape as_read = with_cores ? as_read_back(built.shape, built.stats.core_hubs) : TopoDS_Shape();
+  const bool valid = !with_cores || is_valid(as_read);
   if (valid && solids == components) return;
   std::ostringstream os;
   os << "the B-rep built for this lattice ";
