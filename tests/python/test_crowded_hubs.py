@@ -157,7 +157,7 @@ def test_whole_hubs_whose_dangling_beams_have_no_room_for_a_cut_say_what_to_chan
 
 def test_a_trimmed_part_that_comes_out_invalid_is_refused_never_handed_out():
     """An FCC at beam/node 0.8 trimmed into the box was returned invalid with no error before the trim checked the
-    part it assembled (a beam's thin band at an open cut whose cut circle the band's Boolean split; not fixed yet).
+    part it assembled (band beam pieces at open cuts, from a collar to a cut circle in two arcs; not fixed yet).
     Whatever the trim makes of it, it never hands out an invalid part: a valid one, or an error naming the balls."""
     lat = crowded_sweep.lattice("FCC", 0.35, 0.8, "translation", (3, 3, 3))
     with open(os.path.join(DATA, "dense_box.brep")) as f:
