@@ -134,6 +134,12 @@ TRIM_BOX = (0.325, 1.75)  # corner (each coordinate) and edge
 TRIM_SKIN = 0.1
 
 
+def trim_box_brep():
+    """TRIM_BOX as BREP text (written by data/make_bodies.py)."""
+    with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "dense_box.brep")) as f:
+        return f.read()
+
+
 def sampled_trimmed_volume(lat, skin, n=400_000, seed=7):
     """Volume of the lattice inside the box's inner offset, united with the box's skin, by sampling the kernel's
     point membership and the box's own inequalities; and its standard error."""
@@ -149,8 +155,7 @@ def run_trim_case(preset, node_fraction, ratio, step):
     """The same designs (3 x 3 x 3 cells) trimmed into TRIM_BOX with a skin of TRIM_SKIN: 'built' (one valid solid,
     volume within 5 sigma of sampling), 'foreign', 'too short' or 'failed'."""
     lat = lattice(preset, node_fraction, ratio, step, (3, 3, 3))
-    with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "dense_box.brep")) as f:
-        box = f.read()
+    box = trim_box_brep()
     start = time.perf_counter()
     stats = {}
     try:

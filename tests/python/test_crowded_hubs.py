@@ -119,9 +119,6 @@ def test_a_fuse_that_loses_volume_is_an_error_never_a_silent_figure():
     assert abs(p["volume"] - mc) < 4 * sigma
 
 
-DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data")
-
-
 @pytest.mark.parametrize("preset, ratio, step, skin",
                          [("BCC", 1.0, "translation", 0.0), ("BCC", 1.0, "translation", 0.1), ("octet", 0.8, "screw", 0.1)])
 def test_dense_lattices_with_beams_too_short_for_a_cut_are_trimmed(preset, ratio, step, skin):
@@ -130,8 +127,7 @@ def test_dense_lattices_with_beams_too_short_for_a_cut_are_trimmed(preset, ratio
     one joins the band), and the band has tight collars and groups of hubs as the whole lattice has. Checked
     against sampling the lattice's membership and the box."""
     lat = crowded_sweep.lattice(preset, 0.35, ratio, step, (3, 3, 3))
-    with open(os.path.join(DATA, "dense_box.brep")) as f:
-        box = f.read()
+    box = crowded_sweep.trim_box_brep()
     stats = {}
     props = sl.brep_properties(lat.brep(body=box, skin=skin, stats=stats))
     assert props["valid"], props
@@ -146,8 +142,7 @@ def test_whole_hubs_whose_dangling_beams_have_no_room_for_a_cut_say_what_to_chan
     """Keeping hubs whole, a dangling beam ends at its cut; a beam with no room for a cut between its hubs' collars
     cannot, and the message names it and the two options that build (which then do)."""
     lat = crowded_sweep.lattice("BCC", 0.35, 1.0, "translation", (3, 3, 3))
-    with open(os.path.join(DATA, "dense_box.brep")) as f:
-        box = f.read()
+    box = crowded_sweep.trim_box_brep()
     with pytest.raises(ValueError, match=r"dangling: beam \d+ \(balls \d+ and \d+\) has no room .*dangling='remove'"):
         lat.brep(body=box, policy="whole")
     for options in ({"policy": "whole", "dangling": "remove"}, {"policy": "clip"}):
@@ -160,8 +155,7 @@ def test_a_trimmed_part_that_comes_out_invalid_is_refused_never_handed_out():
     part it assembled (band beam pieces at open cuts, from a collar to a cut circle in two arcs; not fixed yet).
     Whatever the trim makes of it, it never hands out an invalid part: a valid one, or an error naming the balls."""
     lat = crowded_sweep.lattice("FCC", 0.35, 0.8, "translation", (3, 3, 3))
-    with open(os.path.join(DATA, "dense_box.brep")) as f:
-        box = f.read()
+    box = crowded_sweep.trim_box_brep()
     for skin in (0.0, 0.1):
         try:
             text = lat.brep(body=box, skin=skin)

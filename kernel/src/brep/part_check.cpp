@@ -52,9 +52,7 @@ namespace {
 // The shape as a reader of its BREP text gets it: the text keeps 15 digits, and a core whose edges met in a cusp was
 // valid in memory and invalid once read (docs/brep.md, section 6). The Boolean-free faces of clean hubs read back
 // as they were written (tested so), and the text costs time: only shapes with cores go through it.
-TopoDS_Shape as_read_back(const TopoDS_Shape& shape, std::int64_t core_hubs) {
-  return core_hubs > 0 ? brep_from_text(brep_to_text(shape), "lattice") : shape;
-}
+TopoDS_Shape as_read_back(const TopoDS_Shape& shape) { return brep_from_text(brep_to_text(shape), "lattice"); }
 
 }  // namespace
 
@@ -65,7 +63,7 @@ TopoDS_Shape as_read_back(const TopoDS_Shape& shape, std::int64_t core_hubs) {
 void check_built_lattice(const FlatLattice& f, const LatticeBrep& built) {
   const std::int64_t solids = solid_count(built.shape), components = component_count(f);
   const bool with_cores = built.stats.core_hubs > 0;
-  const TopoDS_Shape as_read = with_cores ? as_read_back(built.shape, built.stats.core_hubs) : TopoDS_Shape();
+  const TopoDS_Shape as_read = with_cores ? as_read_back(built.shape) : TopoDS_Shape();
   const bool valid = !with_cores || is_valid(as_read);
   if (valid && solids == components) return;
   std::ostringstream os;
@@ -87,7 +85,7 @@ void check_built_lattice(const FlatLattice& f, const LatticeBrep& built) {
 // closed, faces joined along shared edges) and, for cores, what their BREP text gives back. A trimmed part has no
 // closed-form volume and may hold several solids (a body can cut a lattice apart), so validity is what is checked.
 void check_trimmed_part(const FlatLattice& f, const TopoDS_Shape& part, std::int64_t core_hubs) {
-  const TopoDS_Shape checked = as_read_back(part, core_hubs);
+  const TopoDS_Shape checked = core_hubs > 0 ? as_read_back(part) : part;
   if (is_valid(checked)) return;
   std::string report = validity_report(checked, 2);
   std::replace(report.begin(), report.end(), '\n', ' ');

@@ -242,13 +242,12 @@ HubRoles assign_roles(const FlatLattice& f, const std::vector<BeamFrustum>& frus
       for (const auto& [kept, other] : {std::pair{a, b}, std::pair{b, a}}) {
         const bool kept_hub = r.band[kept] || r.interior[kept];
         const bool dropped = !r.band[other] && !r.interior[other] && states.outer[other] != HubState::Absent;
-        if (r.band[kept] && r.interior[other]) {
+        if (r.band[kept] && r.interior[other])
           r.interior[other] = 0;
-        } else if (!(pull_dropped && kept_hub && !pulled_in[kept] && dropped)) {
-          continue;
-        } else {
+        else if (pull_dropped && kept_hub && !pulled_in[kept] && dropped)
           pulled_in[other] = 1;
-        }
+        else
+          continue;
         r.band[other] = 1;
         ++stats.joined_band_hubs;
         grew = true;
