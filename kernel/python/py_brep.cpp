@@ -100,6 +100,8 @@ void fill_stats(const steady::TrimStats& s, py::dict& d) {
   d["tight_cores"] = s.tight_cores;
   d["hub_groups"] = s.hub_groups;
   d["grouped_hubs"] = s.grouped_hubs;
+  d["foreign_groups"] = s.foreign_groups;
+  d["foreign_hubs"] = s.foreign_hubs;
   d["relaid_out"] = s.relaid_out;
   d["relaid_reason"] = s.relaid_reason;
   d["union_through_pores"] = s.union_through_pores;

@@ -1,6 +1,8 @@
 // The Boolean-free B-rep: validity (BRepCheck_Analyzer), one closed shell per component, and its volume
 // (BRepGProp) against the exact volume computed here in closed form, independently of the kernel's frustum code.
 #include <gtest/gtest.h>
+#include <optional>
+#include <BRepPrimAPI_MakeSphere.hxx>
 
 #include <random>
 
@@ -10,6 +12,7 @@
 #include "steady/core/errors.hpp"
 #include "steady/lattice/flat_lattice.hpp"
 #include "brep/sphere_layout.hpp"
+#include "occ_reference.hpp"
 #include "test_lattices.hpp"
 #include "test_support.hpp"
 
@@ -165,14 +168,61 @@ TEST(BrepBuilder, AbsorbedBallsAndDegenerateBeams) {
   EXPECT_EQ(face_count(b.shape), 3);
 }
 
-TEST(BrepBuilder, RefusesLatticesThatAreNotClean) {
+// Two beams crossing at right angles with the same radius r and their axes meeting (a square's diagonals): they
+// meet foreign elements, so their four hubs are built as one group. The union of two such cylinders overlaps in a
+// Steinmetz solid of volume 16 r^3 / 3, and its intersection curves cross each other where the two cylinders are
+// tangent: the hardest contact two beams can have.
+TEST(BrepBuilder, CrossingBeamsOfDifferentNodesAreBuiltAsOne) {
+  const double r = 0.1;
   const FlatLattice f = make_flat_lattice({{{0, 0, 0}, 0.2}, {{3, 0, 0}, 0.2}, {{3, 3, 0}, 0.2}, {{0, 3, 0}, 0.2}},
-                                          {{0, 2, 0.1, 0.1}, {1, 3, 0.1, 0.1}});
+                                          {{0, 2, r, r}, {1, 3, r, r}});
+  const LatticeBrep b = build_lattice_brep(f);
+  expect_valid_solid(b.shape, 1, exact_volume(f) - 16.0 / 3.0 * r * r * r, "crossing beams");
+  EXPECT_EQ(b.stats.foreign_groups, 1);
+  EXPECT_EQ(b.stats.foreign_hubs, 4);
+}
+
+// Foreign contacts of every kind in one lattice, against OpenCASCADE's Fuse of all its balls and beams (the slow,
+// obviously right twin): a ball touching a beam of other nodes, two skew beams passing through each other, two
+// balls of different nodes overlapping; and a clean part beside them that keeps its own hubs.
+TEST(BrepBuilder, ForeignContactsOfEveryKindMatchABruteForceFuse) {
+  const FlatLattice f = make_flat_lattice(
+      {{{0, 0, 0}, 0.3}, {{4, 0, 0}, 0.3}, {{2, -2, 0.12}, 0.25}, {{2, 2, 0.12}, 0.25},  // skew crossing
+       {{2, 0.15, 0.45}, 0.3},                                                               // a lone ball on beam 1
+       {{6, 0, 0}, 0.28}, {{6.45, 0.1, 0}, 0.3}, {{6.45, 3, 0}, 0.3},                      // overlapping balls
+       {{-3, 0, 0}, 0.3}, {{-3, 3, 0}, 0.3}},                                                // a clean beam
+      {{0, 1, 0.15, 0.15}, {2, 3, 0.12, 0.18}, {1, 5, 0.15, 0.15}, {6, 7, 0.15, 0.15}, {8, 9, 0.12, 0.12},
+       {0, 8, 0.15, 0.12}});
+  std::vector<TopoDS_Shape> pieces;
+  for (const Ball& ball : f.balls) pieces.push_back(BRepPrimAPI_MakeSphere(test::occ_point(ball.center), ball.radius).Shape());
+  for (const FlatBeam& beam : f.beams)
+    pieces.push_back(test::occ_beam(f.balls[beam.a].center, beam.ra, f.balls[beam.b].center, beam.rb));
+  const std::optional<TopoDS_Shape> brute = test::occ_fuse(pieces);
+  ASSERT_TRUE(brute.has_value());
+  const double reference = test::occ_properties(*brute).volume;
+  const LatticeBrep b = build_lattice_brep(f);
+  ASSERT_TRUE(is_valid(b.shape)) << validity_report(b.shape);
+  EXPECT_EQ(solid_count(b.shape), 1);
+  EXPECT_NEAR(shape_volume(b.shape) / reference, 1.0, 1e-7) << shape_volume(b.shape) << " against " << reference;
+  EXPECT_EQ(b.stats.foreign_hubs, 7) << "the balls of the clean beams at x = -3 keep their own hubs";
+  EXPECT_EQ(b.stats.foreign_groups, 2);
+}
+
+// Too many hubs in one group: refused, naming the contacts and what to change.
+TEST(BrepBuilder, ForeignContactsOverTooManyHubsAreRefusedWithTheContacts) {
+  std::vector<Ball> balls;
+  std::vector<FlatBeam> beams;
+  // A row of 70 balls, each overlapping the next (no beams): one group of 70 hubs.
+  for (int i = 0; i < 70; ++i) balls.push_back({{0.5 * i, 0, 0}, 0.3});
+  const FlatLattice f = make_flat_lattice(balls, beams);
   try {
     build_lattice_brep(f);
-    FAIL() << "a lattice with crossing beams was accepted";
+    FAIL() << "a group of 70 hubs was accepted";
   } catch (const InvalidInput& e) {
-    EXPECT_NE(std::string(e.what()).find("beams 0 and 1 meet"), std::string::npos) << e.what();
+    const std::string what = e.what();
+    EXPECT_NE(what.find("is not clean"), std::string::npos) << what;
+    EXPECT_NE(what.find("balls 0 and 1 meet"), std::string::npos) << what;
+    EXPECT_NE(what.find("70 hubs"), std::string::npos) << what;
   }
 }
 

@@ -76,9 +76,9 @@ def run_case(preset, node_fraction, ratio, step, counts=(2, 2, 2)):
         return "failed", str(error)[:300], time.perf_counter() - start
     seconds = time.perf_counter() - start
     props = sl.brep_properties(text)
-    detail = "%d cores (%d distinct, %d fused, %d tight), %d hubs in %d groups" % (
+    detail = "%d cores (%d distinct, %d fused, %d tight), %d hubs in %d groups, %d meeting others in %d groups" % (
         stats["core_hubs"], stats["distinct_cores"], stats["fused_cores"], stats["tight_cores"],
-        stats["grouped_hubs"], stats["hub_groups"])
+        stats["grouped_hubs"], stats["hub_groups"], stats["foreign_hubs"], stats["foreign_groups"])
     try:
         reference = lat.properties()
     except (ValueError, RuntimeError) as error:

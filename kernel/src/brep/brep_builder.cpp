@@ -34,7 +34,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "brep/foreign_groups.hpp"
 #include "brep/part_check.hpp"
+#include "core/disjoint_sets.hpp"
 #include "brep/pcurve_pieces.hpp"
 #include "brep/sphere_pcurve.hpp"
 #include "steady/lattice/beam_frustum.hpp"
@@ -124,6 +126,7 @@ struct HubWork {
   std::int64_t ball = -1;
   std::vector<std::pair<std::int64_t, int>> stumps;  // (beam, end)
   int kind = 0;  // 0: clean (a sphere with holes), 1: hull core, 2: transversal core
+  bool foreign = false;  // built in a group of hubs whose elements meet foreign ones (group_foreign_contacts)
   std::vector<TopoDS_Face> faces;
 };
 
@@ -457,6 +460,7 @@ struct PieceBuild {
   std::vector<ShapeWork> shapes;     // per distinct shape: its sphere layout, or its core
   const BRep_Builder builder;
   std::int64_t hub_groups = 0, grouped_hubs = 0;  // crowded hubs built as one (group_short_beams)
+  std::int64_t foreign_groups = 0, foreign_hubs = 0;  // hubs meeting foreign ones, built as one
   std::string group_failure;                      // why a group could not be built, for the error
 };
 
@@ -634,10 +638,32 @@ void tighten_short_beams(PieceBuild& b) {
     b.shapes[s].tight = true;
   });
   tbb::parallel_for(std::size_t(0), b.hubs.size(), [&](std::size_t h) {
-    if (b.hubs[h].kind == 0 || !b.shapes[b.catalog.placements[h].shape].tight) return;
+    if (b.hubs[h].kind == 0 || b.hubs[h].foreign || !b.shapes[b.catalog.placements[h].shape].tight) return;
     b.hubs[h].faces.clear();
     place_core(b, b.hubs[h], h);
   });
+}
+
+// A fused group's faces go to its first hub, its other hubs keep none, and the beams leaving it start at the
+// group's collars (fixed rings) instead of their hubs' own circles.
+template <class Inner>
+void adopt_group(PieceBuild& b, const std::vector<std::size_t>& members, const HubGroup& fused, const Inner& inner) {
+  for (std::size_t i = 0; i < members.size(); ++i) {
+    HubWork& hub = b.hubs[members[i]];
+    hub.faces.clear();
+    if (i == 0)
+      for (TopExp_Explorer x(fused.faces, TopAbs_FACE); x.More(); x.Next()) hub.faces.push_back(TopoDS::Face(x.Current()));
+    for (std::size_t s = 0; s < hub.stumps.size(); ++s) {
+      const std::int64_t e = hub.stumps[s].first;
+      if (inner(e)) continue;
+      const TopoDS_Edge& collar = fused.collars[i][s];
+      Standard_Real first, last;
+      Handle(Geom_Circle) curve = Handle(Geom_Circle)::DownCast(BRep_Tool::Curve(collar, first, last));
+      TopoDS_Vertex v;
+      for (TopExp_Explorer x(collar, TopAbs_VERTEX); x.More(); x.Next()) v = TopoDS::Vertex(x.Current());
+      ring_from_edges(b.beams[e].end[hub.stumps[s].second], curve, {first}, {v}, {collar});
+    }
+  }
 }
 
 // Groups of crowded hubs are built as one up to this many hubs; beyond, the short beams are reported.
@@ -653,22 +679,17 @@ void group_short_beams(PieceBuild& b) {
   const std::vector<std::int64_t> short_beams = short_whole_beams(b);
   if (short_beams.empty()) return;
   const std::size_t n = b.hubs.size();
-  std::vector<std::size_t> parent(n);
-  std::iota(parent.begin(), parent.end(), std::size_t(0));
-  auto root = [&](std::size_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
+  DisjointSets sets(n);
   for (std::int64_t e : short_beams) {
     const std::int64_t ha = b.beams[e].end[0].hub, hb = b.beams[e].end[1].hub;
     if (ha < 0 || hb < 0) continue;
-    parent[root(static_cast<std::size_t>(ha))] = root(static_cast<std::size_t>(hb));
+    sets.join(static_cast<std::size_t>(ha), static_cast<std::size_t>(hb));
   }
   std::map<std::size_t, std::vector<std::size_t>> by_root;
   for (std::int64_t e : short_beams)
     for (const EndCircle& ec : b.beams[e].end) {
       if (ec.hub < 0) continue;
-      std::vector<std::size_t>& g = by_root[root(static_cast<std::size_t>(ec.hub))];
+      std::vector<std::size_t>& g = by_root[sets.root(static_cast<std::size_t>(ec.hub))];
       if (std::find(g.begin(), g.end(), static_cast<std::size_t>(ec.hub)) == g.end()) g.push_back(ec.hub);
     }
   std::vector<std::vector<std::size_t>> groups;
@@ -719,7 +740,7 @@ void group_short_beams(PieceBuild& b) {
       members.push_back(std::move(m));
     }
     try {
-      fused[g] = fuse_hub_group(members, g);
+      fused[g] = fuse_hub_group(members, g, "of crowded nodes joined by beams too short for their collars");
       built[g] = 1;
     } catch (const InvalidInput& error) {
       failures[g] = error.what();
@@ -732,26 +753,125 @@ void group_short_beams(PieceBuild& b) {
     }
     ++b.hub_groups;
     b.grouped_hubs += static_cast<std::int64_t>(groups[g].size());
-    for (std::size_t i = 0; i < groups[g].size(); ++i) {
-      HubWork& hub = b.hubs[groups[g][i]];
-      hub.faces.clear();
-      if (i == 0)
-        for (TopExp_Explorer x(fused[g].faces, TopAbs_FACE); x.More(); x.Next()) hub.faces.push_back(TopoDS::Face(x.Current()));
-      for (std::size_t s = 0; s < hub.stumps.size(); ++s) {
-        const std::int64_t e = hub.stumps[s].first;
-        if (inner(e)) continue;
-        const TopoDS_Edge& collar = fused[g].collars[i][s];
-        Standard_Real first, last;
-        Handle(Geom_Circle) curve = Handle(Geom_Circle)::DownCast(BRep_Tool::Curve(collar, first, last));
-        TopoDS_Vertex v;
-        for (TopExp_Explorer x(collar, TopAbs_VERTEX); x.More(); x.Next()) v = TopoDS::Vertex(x.Current());
-        ring_from_edges(b.beams[e].end[hub.stumps[s].second], curve, {first}, {v}, {collar});
-      }
-    }
+    adopt_group(b, groups[g], fused[g], inner);
   }
   // Inner beams last: `inner` reads their kind.
   for (std::int64_t e = 0; e < b.f.beam_count(); ++e)
     if (inner(e) && built[group_of[b.beams[e].end[0].hub]]) b.beams[e].kind = BeamKind::None;
+}
+
+// Hubs whose elements meet foreign ones (selection.foreign, foreign_groups.hpp) are built in groups: the connected
+// components of the contacts and of the short beams at their hubs, each one Fuse of its members closed at
+// member_collar. The beams inside a group are no longer built; the beams leaving it start at its collars. Runs
+// before the crowded fallbacks, which leave these hubs alone. A group over kMaxGroupHubs hubs, or one whose
+// Fuse fails its checks, is an error naming the contacts (the lattice is not clean there).
+void group_foreign_contacts(PieceBuild& b) {
+  const ForeignContacts* contacts = b.selection.foreign;
+  if (contacts == nullptr || contacts->empty()) return;
+  const FlatLattice& f = b.f;
+  auto refuse = [&](const std::string& why) {
+    fail_input("lattice", "is not clean (" + std::to_string(contacts->issue_count) + " contact" +
+                              (contacts->issue_count == 1 ? "" : "s") + " between elements of different nodes: " +
+                              contacts->description + "), and " + why +
+                              ": thin the beams or nodes, or space the nodes further apart");
+  };
+  std::vector<std::int64_t> hub_of(f.ball_count(), -1);
+  for (std::size_t h = 0; h < b.hubs.size(); ++h) hub_of[b.hubs[h].ball] = static_cast<std::int64_t>(h);
+  DisjointSets sets(b.hubs.size());
+  std::vector<char> in_contact(b.hubs.size(), 0);
+  for (const auto& [x, y] : contacts->joined) {
+    const std::int64_t hx = hub_of[x], hy = hub_of[y];
+    if (hx >= 0) in_contact[hx] = 1;
+    if (hy >= 0) in_contact[hy] = 1;
+    if (hx >= 0 && hy >= 0) sets.join(static_cast<std::size_t>(hx), static_cast<std::size_t>(hy));
+  }
+  for (std::int64_t e : short_whole_beams(b))
+    sets.join(static_cast<std::size_t>(b.beams[e].end[0].hub), static_cast<std::size_t>(b.beams[e].end[1].hub));
+  std::map<std::size_t, std::vector<std::size_t>> by_root;
+  for (std::size_t h = 0; h < b.hubs.size(); ++h)
+    if (in_contact[h]) by_root[sets.root(h)];
+  for (std::size_t h = 0; h < b.hubs.size(); ++h) {
+    auto it = by_root.find(sets.root(h));
+    if (it != by_root.end()) it->second.push_back(h);
+  }
+  std::vector<std::vector<std::size_t>> groups;
+  std::vector<std::int64_t> group_of(b.hubs.size(), -1);
+  for (auto& [root, members] : by_root) {
+    if (members.size() > kMaxGroupHubs)
+      refuse(std::to_string(members.size()) + " hubs meet so; up to " + std::to_string(kMaxGroupHubs) +
+             " are built as one");
+    for (std::size_t h : members) group_of[h] = static_cast<std::int64_t>(groups.size());
+    groups.push_back(std::move(members));
+  }
+  auto inner = [&](std::int64_t e) {
+    const BeamWork& w = b.beams[e];
+    return w.kind == BeamKind::Whole && group_of[w.end[0].hub] >= 0 && group_of[w.end[0].hub] == group_of[w.end[1].hub];
+  };
+  // Where each member's stumps end (in ball radii), from the hubs' own collars before any group changes them.
+  auto collar_of = [&](const HubWork& hub, std::size_t s) {
+    const auto [e, end] = hub.stumps[s];
+    const BeamWork& w = b.beams[e];
+    const BeamFrustum& fr = b.frustums[e];
+    const double here = w.end[end].axial;
+    if (w.kind == BeamKind::Whole) return member_collar(here, w.end[1 - end].axial, fr.cone.length, inner(e));
+    const double to_cut = end == 0 ? fr.cut_position() : fr.cone.length - fr.cut_position();
+    return member_collar(here, 0.0, to_cut, false);
+  };
+  std::vector<std::vector<std::shared_ptr<const HubCore>>> cores(groups.size());
+  std::vector<HubGroup> fused(groups.size());
+  std::vector<std::string> failures(groups.size());
+  tbb::parallel_for(std::size_t(0), groups.size(), [&](std::size_t g) {
+    b.progress.check();
+    try {
+      std::vector<GroupMember> members;
+      for (std::size_t h : groups[g]) {
+        const HubWork& hub = b.hubs[h];
+        const Ball& ball = f.balls[hub.ball];
+        GroupMember m;
+        m.rotation = b.catalog.placements[h].rotation;
+        m.stumps = member_stumps(f, b.frustums, hub.ball, hub.stumps, m.rotation);
+        m.center = ball.center;
+        m.radius = ball.radius;
+        std::vector<double> collars;
+        for (std::size_t s = 0; s < hub.stumps.size(); ++s) {
+          m.inner.push_back(inner(hub.stumps[s].first));
+          collars.push_back(collar_of(hub, s) / ball.radius);
+        }
+        cores[g].push_back(hub.stumps.empty() ? lone_ball_core()
+                                              : build_hub_core(m.stumps, member_kind(m.stumps), collars, CollarFit::Tight));
+        m.core = cores[g].back().get();
+        // The core may have taken collars farther out (its Fuse's fallback): a leaving beam must still fit.
+        for (std::size_t s = 0; s < hub.stumps.size(); ++s)
+          if (!m.inner[s] && !(m.core->collar_position[s] <= collars[s] * (1.0 + 1e-9)))
+            fail_input("hub", "the core of ball " + std::to_string(hub.ball) + " needs a collar farther out on beam " +
+                                  std::to_string(hub.stumps[s].first) + " than the beam has room for");
+        members.push_back(std::move(m));
+      }
+      fused[g] = fuse_hub_group(members, g, "whose elements meet elements of other nodes");
+    } catch (const InvalidInput& error) {
+      failures[g] = error.what();
+    }
+  });
+  for (std::size_t g = 0; g < groups.size(); ++g)
+    if (!failures[g].empty())
+      refuse("the " + std::to_string(groups[g].size()) + " hubs around ball " +
+             std::to_string(b.hubs[groups[g][0]].ball) + " could not be built as one (" + failures[g] + ")");
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    for (std::size_t i = 0; i < groups[g].size(); ++i) {
+      HubWork& hub = b.hubs[groups[g][i]];
+      hub.foreign = true;
+      if (hub.kind == 0) hub.kind = 2;  // no sphere layout of its own any more: a core's collars
+      for (std::size_t s = 0; s < hub.stumps.size(); ++s)
+        if (!inner(hub.stumps[s].first))
+          b.beams[hub.stumps[s].first].end[hub.stumps[s].second].axial =
+              cores[g][i]->collar_position[s] * b.f.balls[hub.ball].radius;
+    }
+    adopt_group(b, groups[g], fused[g], inner);
+    ++b.foreign_groups;
+    b.foreign_hubs += static_cast<std::int64_t>(groups[g].size());
+  }
+  for (std::int64_t e = 0; e < f.beam_count(); ++e)
+    if (b.beams[e].kind == BeamKind::Whole && inner(e)) b.beams[e].kind = BeamKind::None;
 }
 
 // How far along beam e its end `end` reaches into the beam with every beam radius at that hub scaled by k: the
@@ -1034,6 +1154,8 @@ BrepPieces collect_pieces(PieceBuild& b, CutEdges& cut_edges) {
   out.stats.balls = static_cast<std::int64_t>(b.hubs.size());
   out.stats.hub_groups = b.hub_groups;
   out.stats.grouped_hubs = b.grouped_hubs;
+  out.stats.foreign_groups = b.foreign_groups;
+  out.stats.foreign_hubs = b.foreign_hubs;
   out.stats.faces = static_cast<std::int64_t>(out.faces.size());
   out.stats.distinct_hubs = static_cast<std::int64_t>(b.shapes.size());
   for (const ShapeWork& w : b.shapes) {
@@ -1062,6 +1184,7 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
     progress.check();
     place_core(b, b.hubs[h], h);
   });
+  group_foreign_contacts(b);
   if (selection.crowded_fallbacks) {
     tighten_short_beams(b);
     group_short_beams(b);
@@ -1156,12 +1279,7 @@ std::vector<char> place_cuts_between_collars(const FlatLattice& f, std::vector<B
 
 TopoDS_Shape solids_from_faces(const std::vector<TopoDS_Face>& faces, Progress& progress) {
   const std::int64_t n = static_cast<std::int64_t>(faces.size());
-  std::vector<std::int64_t> parent(n);
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](std::int64_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
+  DisjointSets sets(static_cast<std::size_t>(n));
   std::unordered_map<const void*, std::int64_t> first_face;
   first_face.reserve(static_cast<std::size_t>(3 * n));
   // Units: two per face for the grouping, one per face for the shells, the rest (solids, voids) in finish().
@@ -1172,7 +1290,7 @@ TopoDS_Shape solids_from_faces(const std::vector<TopoDS_Face>& faces, Progress& 
     for (TopExp_Explorer x(faces[i], TopAbs_EDGE); x.More(); x.Next()) {
       const void* key = x.Current().TShape().get();
       auto [it, inserted] = first_face.emplace(key, i);
-      if (!inserted) parent[find(i)] = find(it->second);
+      if (!inserted) sets.join(i, it->second);
     }
   }
   progress.advance(2 * (n % kChunk));
@@ -1181,7 +1299,7 @@ TopoDS_Shape solids_from_faces(const std::vector<TopoDS_Face>& faces, Progress& 
   const BRep_Builder b;
   for (std::int64_t i = 0; i < n; ++i) {
     if (i % kChunk == kChunk - 1) progress.advance(kChunk);
-    const std::int64_t root = find(i);
+    const std::int64_t root = static_cast<std::int64_t>(sets.root(i));
     auto [it, inserted] = shell_of.emplace(root, shells.size());
     if (inserted) {
       shells.emplace_back();
@@ -1231,10 +1349,12 @@ LatticeBrep build_lattice_brep(const FlatLattice& lattice, SeamPreference seams,
   // Units: the clean check 5, the faces 40, the solids 55 (measured shares, roughly: grouping the faces into
   // shells and classifying them costs more than building them).
   progress.set_total(100);
-  // Overlapping exit circles on a ball are the business of hub cores; elements meeting foreign ones are not.
-  require_clean_for_build(lattice);
+  // Overlapping exit circles on a ball are the business of hub cores; elements meeting foreign ones are built in
+  // groups with their neighbours (group_foreign_contacts).
+  const ForeignContacts contacts = foreign_contacts(lattice);
   CutEdges cuts;
   BrepSelection selection = BrepSelection::everything(lattice);
+  selection.foreign = &contacts;
   selection.seams = seams;
   progress.advance(5);
   BrepPieces pieces;
@@ -1248,7 +1368,7 @@ LatticeBrep build_lattice_brep(const FlatLattice& lattice, SeamPreference seams,
     out.shape = solids_from_faces(pieces.faces, part);
   }
   out.stats = pieces.stats;
-  check_built_lattice(lattice, out);
+  check_built_lattice(lattice, out, contacts.joined);
   progress.finish();
   return out;
 }

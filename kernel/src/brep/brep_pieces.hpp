@@ -19,6 +19,8 @@
 namespace steady {
 
 // Which part of a lattice to build.
+struct ForeignContacts;
+
 struct BrepSelection {
   std::vector<char> balls;  // per ball: build its sphere (absorbed balls are never built)
   std::vector<char> beams;  // per beam: build it; a built beam whose ball is not built stops at its cut
@@ -32,6 +34,9 @@ struct BrepSelection {
   // thin bands of cone between a stump's envelope and a tight collar, which the Booleans may fail to split, are
   // caught by the clusters' checks and the check of the assembled part (part_check.hpp).
   bool crowded_fallbacks = true;
+  // Elements meeting foreign ones (foreign_groups.hpp): their hubs are built in groups. Null: the lattice is
+  // clean but for crowded hubs (the caller checked).
+  const ForeignContacts* foreign = nullptr;
   static BrepSelection everything(const FlatLattice& lattice);
 };
 

@@ -201,9 +201,8 @@ HubGroup fuse_once(const std::vector<GroupMember>& members, const std::vector<To
 
 }  // namespace
 
-HubGroup fuse_hub_group(const std::vector<GroupMember>& members, std::uint64_t seed) {
-  const std::string what = "the " + std::to_string(members.size()) + " crowded hubs joined by beams too short for "
-                           "their collars, built as one";
+HubGroup fuse_hub_group(const std::vector<GroupMember>& members, std::uint64_t seed, const std::string& why) {
+  const std::string what = "the " + std::to_string(members.size()) + " hubs " + why + ", built as one";
   if (members.size() < 2) fail_input("hub", "a group of hubs needs two hubs at least");
   GroupBounds bounds;
   std::vector<TopoDS_Shape> placed;

@@ -43,7 +43,8 @@ gp_Trsf hub_placement(const Vec3& center, double radius, const Mat3& rotation);
 // disk found untouched (a planar face bounded by that collar circle alone), and the volume it encloses within the
 // bounds of a union (no less than the largest member, no more than their sum) and within 6 sigma of sampling the
 // members' own definition (ball, and each stump's cone up to its collar). Where a check fails, the Fuse is tried
-// again with small fuzzy values. Throws InvalidInput (field "hub") with the first failure when all fail.
-HubGroup fuse_hub_group(const std::vector<GroupMember>& members, std::uint64_t seed);
+// again with small fuzzy values. Throws InvalidInput (field "hub") with the first failure when all fail, naming the
+// group as "the N hubs <why>".
+HubGroup fuse_hub_group(const std::vector<GroupMember>& members, std::uint64_t seed, const std::string& why);
 
 }  // namespace steady

@@ -21,6 +21,8 @@ TrimResult make_part(const FlatLattice& lattice, const LatticePartRequest& reque
     out.stats.tight_cores = built.stats.tight_cores;
     out.stats.hub_groups = built.stats.hub_groups;
     out.stats.grouped_hubs = built.stats.grouped_hubs;
+    out.stats.foreign_groups = built.stats.foreign_groups;
+    out.stats.foreign_hubs = built.stats.foreign_hubs;
     return out;
   }
   TopoDS_Shape body;

@@ -10,23 +10,22 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/disjoint_sets.hpp"
 #include "steady/brep/brep_io.hpp"
 #include "steady/core/errors.hpp"
 
 namespace steady {
 
-std::int64_t component_count(const FlatLattice& f) {
-  std::vector<std::int64_t> parent(f.ball_count());
-  for (std::int64_t i = 0; i < f.ball_count(); ++i) parent[i] = i;
-  auto root = [&](std::int64_t i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  };
+std::int64_t component_count(const FlatLattice& f,
+                             const std::vector<std::pair<std::int64_t, std::int64_t>>& touching) {
+  DisjointSets sets(static_cast<std::size_t>(f.ball_count()));
   std::int64_t count = f.ball_count();
-  for (const FlatBeam& b : f.beams) {
-    const std::int64_t ra = root(b.a), rb = root(b.b);
-    if (ra != rb) parent[ra] = rb, --count;
-  }
+  auto join = [&](std::int64_t a, std::int64_t b) {
+    const std::size_t ra = sets.root(a), rb = sets.root(b);
+    if (ra != rb) sets.join(ra, rb), --count;
+  };
+  for (const FlatBeam& b : f.beams) join(b.a, b.b);
+  for (const auto& [a, b] : touching) join(a, b);
   return count;
 }
 
@@ -60,8 +59,9 @@ TopoDS_Shape as_read_back(const TopoDS_Shape& shape) { return brep_from_text(bre
 // OpenCASCADE's, which has returned wrong shapes that it reported as done), a valid shape as it reads back from its
 // BREP text. (The Boolean-free faces of clean hubs are valid by construction and tested so; checking them all would
 // cost as much as the build.)
-void check_built_lattice(const FlatLattice& f, const LatticeBrep& built) {
-  const std::int64_t solids = solid_count(built.shape), components = component_count(f);
+void check_built_lattice(const FlatLattice& f, const LatticeBrep& built,
+                         const std::vector<std::pair<std::int64_t, std::int64_t>>& touching) {
+  const std::int64_t solids = solid_count(built.shape), components = component_count(f, touching);
   const bool with_cores = built.stats.core_hubs > 0;
   const TopoDS_Shape as_read = with_cores ? as_read_back(built.shape) : TopoDS_Shape();
   const bool valid = !with_cores || is_valid(as_read);

@@ -40,6 +40,8 @@ struct BrepBuildStats {
   std::int64_t tight_cores = 0;    // of those, built with tight collars for beams too short for roomy ones
   std::int64_t hub_groups = 0;     // groups of crowded hubs joined by beams too short for them, built as one
   std::int64_t grouped_hubs = 0;   // the hubs in those groups
+  std::int64_t foreign_groups = 0; // groups of hubs whose elements meet elements of other nodes, built as one
+  std::int64_t foreign_hubs = 0;   // the hubs in those groups
   std::int64_t joints = 0;         // circles added inside beams to join two fixed seams
   double layout_seconds = 0.0;     // catalog, sphere layouts and (u, v) curves
   double topology_seconds = 0.0;   // vertices, edges, faces

@@ -71,6 +71,7 @@ struct TrimStats {
                                           // clipped one by one and glued to the skin by a Fuse
   std::int64_t core_hubs = 0, distinct_cores = 0, fused_cores = 0, tight_cores = 0;  // crowded hubs built from cores, and the cores built
   std::int64_t hub_groups = 0, grouped_hubs = 0;  // crowded hubs joined by too short beams, built as one
+  std::int64_t foreign_groups = 0, foreign_hubs = 0;  // hubs meeting elements of other nodes, built as one
   std::int64_t joined_band_hubs = 0;      // hubs clipped with the band all the same, joined to it by a beam with
                                           // no room for a cut between their collars: inside hubs, and (clipping,
                                           // dangling beams kept) dropped ones for the Boolean to remove
