@@ -167,11 +167,11 @@ def run_trim_case(preset, node_fraction, ratio, step):
     seconds = time.perf_counter() - start
     props = sl.brep_properties(text)
     estimate, sigma = sampled_trimmed_volume(lat, TRIM_SKIN)
-    detail = "%d cores (%d tight), %d hubs in %d groups, %d joined to the band, %d clusters (%d fuzzy), " \
-             "volume %.5f, sampled %.5f +- %.5f" % (
+    detail = "%d cores (%d tight), %d hubs in %d groups, %d meeting others in %d groups, %d joined to the band, " \
+             "%d clusters (%d fuzzy), volume %.5f, sampled %.5f +- %.5f" % (
                  stats["core_hubs"], stats["tight_cores"], stats["grouped_hubs"], stats["hub_groups"],
-                 stats["joined_band_hubs"], stats["band_clusters"], stats["fuzzy_clusters"], props["volume"],
-                 estimate, sigma)
+                 stats["foreign_hubs"], stats["foreign_groups"], stats["joined_band_hubs"], stats["band_clusters"],
+                 stats["fuzzy_clusters"], props["volume"], estimate, sigma)
     if not props["valid"] or props["solids"] != 1 or not abs(props["volume"] - estimate) <= 5 * sigma:
         return "failed", "valid %s, %d solids, %s" % (props["valid"], props["solids"], detail), seconds
     return "built", detail, seconds

@@ -119,6 +119,40 @@ def test_a_fuse_that_loses_volume_is_an_error_never_a_silent_figure():
     assert abs(p["volume"] - mc) < 4 * sigma
 
 
+def foreign_contacts(lat):
+    return [i for i in lat.clean_check()["issues"] if i["kind"] != "circle_overlap"]
+
+
+@pytest.mark.parametrize("preset, ratio, step", [("BCC", 0.9, "screw"), ("FCC", 1.0, "translation")])
+def test_lattices_whose_elements_meet_other_nodes_build_to_the_properties_volume(preset, ratio, step):
+    """Node 0.45 of the neighbour distance: balls and beams meet beams of other nodes (96 of the long sweep's 900
+    cases were refused as not clean for that). The hubs of every contact are now fused as one group; the solid's
+    volume matches the properties, which fuse the overlapping hubs themselves (hence FUSED_REFERENCE_TOLERANCE)."""
+    lat = crowded_sweep.lattice(preset, 0.45, ratio, step, (2, 2, 2))
+    assert foreign_contacts(lat)
+    stats = {}
+    props = sl.brep_properties(lat.brep(stats=stats))
+    assert props["valid"] and props["solids"] == 1, props
+    assert stats["foreign_groups"] >= 1 and stats["foreign_hubs"] > 0, stats
+    reference = lat.properties()
+    assert reference["union_clusters"] > 0, reference
+    assert abs(props["volume"] / reference["volume"] - 1) < crowded_sweep.FUSED_REFERENCE_TOLERANCE
+
+
+def test_a_lattice_whose_elements_meet_other_nodes_is_trimmed():
+    """FCC, node 0.45, beam/node 0.8, a screw, 3 x 3 x 3 cells: balls meet beams of other nodes. Trimmed into the
+    sweep's box with a skin, the hubs of those contacts join the band together and are fused as one group there;
+    checked against sampling the lattice's membership and the box."""
+    lat = crowded_sweep.lattice("FCC", 0.45, 0.8, "screw", (3, 3, 3))
+    assert foreign_contacts(lat)
+    stats = {}
+    props = sl.brep_properties(lat.brep(body=crowded_sweep.trim_box_brep(), skin=crowded_sweep.TRIM_SKIN, stats=stats))
+    assert props["valid"] and props["solids"] == 1, props
+    assert stats["foreign_hubs"] > 0, stats
+    estimate, sigma = crowded_sweep.sampled_trimmed_volume(lat, crowded_sweep.TRIM_SKIN)
+    assert abs(props["volume"] - estimate) <= 5 * sigma, (props["volume"], estimate, sigma)
+
+
 @pytest.mark.parametrize("preset, ratio, step, skin",
                          [("BCC", 1.0, "translation", 0.0), ("BCC", 1.0, "translation", 0.1), ("octet", 0.8, "screw", 0.1)])
 def test_dense_lattices_with_beams_too_short_for_a_cut_are_trimmed(preset, ratio, step, skin):

@@ -126,7 +126,6 @@ struct HubWork {
   std::int64_t ball = -1;
   std::vector<std::pair<std::int64_t, int>> stumps;  // (beam, end)
   int kind = 0;  // 0: clean (a sphere with holes), 1: hull core, 2: transversal core
-  bool foreign = false;  // built in a group of hubs whose elements meet foreign ones (group_foreign_contacts)
   std::vector<TopoDS_Face> faces;
 };
 
@@ -638,7 +637,7 @@ void tighten_short_beams(PieceBuild& b) {
     b.shapes[s].tight = true;
   });
   tbb::parallel_for(std::size_t(0), b.hubs.size(), [&](std::size_t h) {
-    if (b.hubs[h].kind == 0 || b.hubs[h].foreign || !b.shapes[b.catalog.placements[h].shape].tight) return;
+    if (b.hubs[h].kind == 0 || !b.shapes[b.catalog.placements[h].shape].tight) return;
     b.hubs[h].faces.clear();
     place_core(b, b.hubs[h], h);
   });
@@ -763,7 +762,8 @@ void group_short_beams(PieceBuild& b) {
 // Hubs whose elements meet foreign ones (selection.foreign, foreign_groups.hpp) are built in groups: the connected
 // components of the contacts and of the short beams at their hubs, each one Fuse of its members closed at
 // member_collar. The beams inside a group are no longer built; the beams leaving it start at its collars. Runs
-// before the crowded fallbacks, which leave these hubs alone. A group over kMaxGroupHubs hubs, or one whose
+// after tight collars (tighten_short_beams) and before the groups of short beams, which then leave these hubs
+// alone. A group over kMaxGroupHubs hubs, or one whose
 // Fuse fails its checks, is an error naming the contacts (the lattice is not clean there).
 void group_foreign_contacts(PieceBuild& b) {
   const ForeignContacts* contacts = b.selection.foreign;
@@ -859,7 +859,6 @@ void group_foreign_contacts(PieceBuild& b) {
   for (std::size_t g = 0; g < groups.size(); ++g) {
     for (std::size_t i = 0; i < groups[g].size(); ++i) {
       HubWork& hub = b.hubs[groups[g][i]];
-      hub.foreign = true;
       if (hub.kind == 0) hub.kind = 2;  // no sphere layout of its own any more: a core's collars
       for (std::size_t s = 0; s < hub.stumps.size(); ++s)
         if (!inner(hub.stumps[s].first))
@@ -1184,11 +1183,10 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
     progress.check();
     place_core(b, b.hubs[h], h);
   });
+  // Tight collars first: the beams they make fit need not join a foreign contact's group.
+  if (selection.crowded_fallbacks) tighten_short_beams(b);
   group_foreign_contacts(b);
-  if (selection.crowded_fallbacks) {
-    tighten_short_beams(b);
-    group_short_beams(b);
-  }
+  if (selection.crowded_fallbacks) group_short_beams(b);
   check_whole_beams_fit(b);
   tbb::parallel_for(std::int64_t(0), f.beam_count(), [&](std::int64_t e) {
     if (b.beams[e].kind == BeamKind::None) return;

@@ -55,6 +55,7 @@ BuiltHubs build_hubs(const FlatLattice& f, const HubRoles& roles, const CutPlan&
     sel.split = plan.split;
     sel.cut_fractions = plan.cut_fractions;
     sel.seams = seams;
+    sel.foreign = &roles.contacts;
     Progress part(budget.progress(), budget.rest(weights.build_band));
     out.band = build_brep_pieces(f, sel, out.cuts, part);
   }
@@ -62,6 +63,7 @@ BuiltHubs build_hubs(const FlatLattice& f, const HubRoles& roles, const CutPlan&
   sel.balls = roles.interior;
   sel.beams = roles.interior_beams;
   sel.open_cuts = roles.open_cuts;
+  sel.foreign = &roles.contacts;
   {
     Progress part(budget.progress(), budget.rest(weights.build_interior));
     out.interior = build_brep_pieces(f, sel, out.cuts, part);
@@ -74,6 +76,8 @@ BuiltHubs build_hubs(const FlatLattice& f, const HubRoles& roles, const CutPlan&
     stats.tight_cores += p->stats.tight_cores;
     stats.hub_groups += p->stats.hub_groups;
     stats.grouped_hubs += p->stats.grouped_hubs;
+    stats.foreign_groups += p->stats.foreign_groups;
+    stats.foreign_hubs += p->stats.foreign_hubs;
   }
   report(options, "trim: built the boundary and interior hubs in " + std::to_string(stats.build_seconds) + " s (" +
                       std::to_string(out.band.stats.distinct_cores) + " and " +
@@ -130,7 +134,8 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
   const std::vector<char> absorbed = absorbed_balls(f, frustums);
   const HubStates states = classify(f, frustums, absorbed, bodies, stats, budget);
   stats.classify_seconds = seconds_since(clock);
-  const HubRoles roles = assign_roles(f, frustums, states, no_room, options, bodies.skin.has_value(), stats);
+  const HubRoles roles =
+      assign_roles(f, frustums, states, no_room, foreign_contacts(f), options, bodies.skin.has_value(), stats);
   const bool unite = bodies.skin && options.unite_skin;
   const WorkWeights weights = work_weights(f, roles, options, unite);
   budget.share_rest(weights.total());

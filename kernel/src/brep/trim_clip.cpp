@@ -250,6 +250,7 @@ std::vector<std::vector<TopoDS_Face>> second_layout_faces(const ClipContext& c, 
     other.beams[e] = c.roles.band_beams[e] && (other.balls[f.beams[e].a] || other.balls[f.beams[e].b]);
   other.split = c.plan.split;
   other.cut_fractions = c.plan.cut_fractions;
+  other.foreign = &c.roles.contacts;
   other.seams = seams == SeamPreference::FewestCrossings ? SeamPreference::MostCrossings : SeamPreference::FewestCrossings;
   second = build_brep_pieces(f, other, cuts);
   for (const auto& [beam, count] : vertices_before)

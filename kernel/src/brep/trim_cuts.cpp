@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "brep/trim_phases.hpp"
+#include "core/disjoint_sets.hpp"
 
 namespace steady::trim {
 namespace {
@@ -19,16 +20,6 @@ namespace {
 constexpr double kMovedCutPlaces[] = {0.35, 0.65, 0.2, 0.8, 0.1, 0.9};
 
 // Union-find over the balls.
-struct Roots {
-  std::vector<std::int64_t> parent;
-  explicit Roots(std::int64_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  std::int64_t find(std::int64_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void join(std::int64_t a, std::int64_t b) { parent[find(a)] = find(b); }
-};
-
 // Where the cuts of the beams between band hubs may go.
 class CutPlacer {
  public:
@@ -82,7 +73,7 @@ CutPlan place_cuts(const FlatLattice& f, const HubRoles& roles, const Bodies& bo
   if (options.policy == TrimPolicy::Clip) plan.boundary = bodies.inner ? &*bodies.inner : &bodies.body;
   plan.split.assign(f.beam_count(), 0);
   plan.moved.assign(f.beam_count(), 0);
-  Roots roots(f.ball_count());
+  DisjointSets roots(static_cast<std::size_t>(f.ball_count()));
   CutPlacer placer(f, roles, plan.boundary, kClearanceRelative * bodies.body.size(), frustums, stats);
   // Where each cut was before this step (halfway, or between crowded hubs' collars), to go back to.
   std::vector<double> first_place(f.beam_count());
@@ -109,9 +100,12 @@ CutPlan place_cuts(const FlatLattice& f, const HubRoles& roles, const Bodies& bo
       roots.join(f.beams[e].a, f.beams[e].b);
     }
   }
+  // The band hubs of a foreign contact are built in one group (foreign_groups.hpp): one cluster.
+  for (const auto& [a, b] : roles.contacts.joined)
+    if (roles.band[a] && roles.band[b]) roots.join(a, b);
   // A clear cut inside one cluster stays whole: its two disks would be coincident faces of one Boolean argument.
   for (std::int64_t e = 0; e < f.beam_count(); ++e)
-    if (plan.split[e] && roots.find(f.beams[e].a) == roots.find(f.beams[e].b)) {
+    if (plan.split[e] && roots.root(f.beams[e].a) == roots.root(f.beams[e].b)) {
       plan.split[e] = plan.moved[e] = 0;
       frustums[e].cut_fraction = first_place[e];
     }
@@ -119,7 +113,7 @@ CutPlan place_cuts(const FlatLattice& f, const HubRoles& roles, const Bodies& bo
   plan.cut_fractions.resize(f.beam_count());
   for (std::int64_t e = 0; e < f.beam_count(); ++e) plan.cut_fractions[e] = frustums[e].cut_fraction;
   plan.cluster_root.resize(f.ball_count());
-  for (std::int64_t i = 0; i < f.ball_count(); ++i) plan.cluster_root[i] = roots.find(i);
+  for (std::int64_t i = 0; i < f.ball_count(); ++i) plan.cluster_root[i] = static_cast<std::int64_t>(roots.root(i));
   progress.finish();
   return plan;
 }

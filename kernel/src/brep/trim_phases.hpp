@@ -24,6 +24,7 @@
 
 #include "brep/skin_holes.hpp"
 #include "brep/brep_pieces.hpp"
+#include "brep/foreign_groups.hpp"
 #include "steady/brep/skin.hpp"
 #include "steady/brep/solid_body.hpp"
 #include "steady/brep/trim.hpp"
@@ -91,14 +92,19 @@ struct HubRoles {
   std::vector<char> beam_kept;       // per beam
   std::vector<char> band_beams, interior_beams;  // per beam: attached to a band / an interior hub
   std::vector<char> open_cuts;       // per beam between a band and an interior hub: glued at its cut
-  std::vector<char> no_room;         // per beam: no room for a cut between its crowded hubs' collars (never cut)
+  std::vector<char> no_room;         // per beam: never cut (no room between its crowded hubs' collars, or it meets
+                                     // an element of another node)
+  ForeignContacts contacts;          // elements meeting foreign ones: their hubs are built in groups
   bool has_band = false;
 };
 // `no_room`: place_cuts_between_collars's beams with no room for a cut. Their two hubs are built together (tight
-// collars, or one group of hubs), so an interior hub joined by one to a band hub joins the band.
+// collars, or one group of hubs), so an interior hub joined by one to a band hub joins the band. The hubs of a
+// foreign contact are built in one group likewise (foreign_groups.hpp): they join the band together, and the beams
+// in a contact are never cut.
 // InvalidInput naming "body" (the lattice misses it), "policy" or "skin" (nothing is kept).
 HubRoles assign_roles(const FlatLattice& f, const std::vector<BeamFrustum>& frustums, const HubStates& states,
-                      const std::vector<char>& no_room, const TrimOptions& options, bool has_skin, TrimStats& stats);
+                      const std::vector<char>& no_room, ForeignContacts contacts, const TrimOptions& options,
+                      bool has_skin, TrimStats& stats);
 
 // The estimates of what follows the roles, relative to building one element (docs/brep.md).
 struct WorkWeights {

@@ -203,7 +203,8 @@ HubCounts count_hubs(const HubStates& states) {
 }
 
 HubRoles assign_roles(const FlatLattice& f, const std::vector<BeamFrustum>& frustums, const HubStates& states,
-                      const std::vector<char>& no_room, const TrimOptions& options, bool has_skin, TrimStats& stats) {
+                      const std::vector<char>& no_room, ForeignContacts contacts, const TrimOptions& options,
+                      bool has_skin, TrimStats& stats) {
   // Hubs: interior hubs are built whole with no Boolean; band hubs go through the Booleans.
   const std::int64_t n = f.ball_count();
   HubRoles r;
@@ -231,14 +232,19 @@ HubRoles assign_roles(const FlatLattice& f, const std::vector<BeamFrustum>& frus
   // joined so to a band hub. When clipping with dangling beams kept, a dropped hub joined so to a kept one joins
   // the band too (the Boolean removes it); it pulls in nothing more, and its beams to other dropped hubs, outside
   // like both their hubs' reach, are not kept.
+  // The hubs of a foreign contact (and of a beam in one, never cut) are joined the same way.
+  r.contacts = std::move(contacts);
   r.no_room = no_room;
+  for (std::int64_t e = 0; e < f.beam_count(); ++e)
+    r.no_room[e] = r.no_room[e] || (!r.contacts.empty() && r.contacts.involved[e]);
+  std::vector<std::pair<std::int64_t, std::int64_t>> joined = r.contacts.joined;
+  for (std::int64_t e = 0; e < f.beam_count(); ++e)
+    if (r.no_room[e] && frustums[e].exists) joined.emplace_back(f.beams[e].a, f.beams[e].b);
   std::vector<char> pulled_in(n, 0);
   const bool pull_dropped = options.policy == TrimPolicy::Clip && options.dangling == DanglingBeams::Keep;
   for (bool grew = true; grew;) {
     grew = false;
-    for (std::int64_t e = 0; e < f.beam_count(); ++e) {
-      if (!no_room[e] || !frustums[e].exists) continue;
-      const std::int64_t a = f.beams[e].a, b = f.beams[e].b;
+    for (const auto& [a, b] : joined) {
       for (const auto& [kept, other] : {std::pair{a, b}, std::pair{b, a}}) {
         const bool kept_hub = r.band[kept] || r.interior[kept];
         const bool dropped = !r.band[other] && !r.interior[other] && states.outer[other] != HubState::Absent;
@@ -276,11 +282,13 @@ HubRoles assign_roles(const FlatLattice& f, const std::vector<BeamFrustum>& frus
       continue;
     }
     // Keeping hubs whole, a dangling beam ends at its cut, which such a beam's kept hub covers with its collar.
-    if (no_room[e] && (!ka || !kb) && options.policy == TrimPolicy::Whole)
+    if (r.no_room[e] && (!ka || !kb) && options.policy == TrimPolicy::Whole)
       fail_input("dangling", "beam " + std::to_string(e) + " (balls " + std::to_string(a) + " and " +
-                                 std::to_string(b) + ") has no room for a cut between its crowded hubs' collars, and "
-                                 "only one of its hubs is kept whole: remove dangling beams (dangling='remove'), or "
-                                 "clip (policy 'clip'), which keeps both hubs until the Boolean");
+                                 std::to_string(b) + ") " +
+                                 (no_room[e] ? "has no room for a cut between its crowded hubs' collars"
+                                             : "meets an element of another node, so it cannot end at a cut") +
+                                 ", and only one of its hubs is kept whole: remove dangling beams (dangling='remove'), "
+                                 "or clip (policy 'clip'), which keeps both hubs until the Boolean");
     r.beam_kept[e] = 1;
     r.band_beams[e] = r.band[a] || r.band[b];
     r.interior_beams[e] = r.interior[a] || r.interior[b];
