@@ -77,7 +77,7 @@ CoreKind member_kind(const std::vector<CoreStump>& stumps) {
 
 double member_collar(double here, double there, double length, bool inner) {
   const double free = length - here - there;
-  if (inner) return free > 0.0 ? here + 0.75 * free : here;
+  if (inner) return free > 0.0 ? here + 0.5 * free : here;
   return here + 0.25 * free;
 }
 
