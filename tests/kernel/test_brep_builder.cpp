@@ -212,17 +212,17 @@ TEST(BrepBuilder, ForeignContactsOfEveryKindMatchABruteForceFuse) {
 TEST(BrepBuilder, ForeignContactsOverTooManyHubsAreRefusedWithTheContacts) {
   std::vector<Ball> balls;
   std::vector<FlatBeam> beams;
-  // A row of 70 balls, each overlapping the next (no beams): one group of 70 hubs.
-  for (int i = 0; i < 70; ++i) balls.push_back({{0.5 * i, 0, 0}, 0.3});
+  // A row of 300 balls, each overlapping the next (no beams): one group of 300 hubs.
+  for (int i = 0; i < 300; ++i) balls.push_back({{0.5 * i, 0, 0}, 0.3});
   const FlatLattice f = make_flat_lattice(balls, beams);
   try {
     build_lattice_brep(f);
-    FAIL() << "a group of 70 hubs was accepted";
+    FAIL() << "a group of 300 hubs was accepted";
   } catch (const InvalidInput& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("is not clean"), std::string::npos) << what;
     EXPECT_NE(what.find("balls 0 and 1 meet"), std::string::npos) << what;
-    EXPECT_NE(what.find("70 hubs"), std::string::npos) << what;
+    EXPECT_NE(what.find("300 hubs"), std::string::npos) << what;
   }
 }
 

@@ -182,11 +182,11 @@ def test_balls_of_different_nodes_that_overlap_are_built_as_their_union():
 
 
 def test_foreign_contacts_over_too_many_hubs_are_refused_naming_them():
-    """A 5 x 5 x 3 block of such balls is 75 hubs in one group, more than are built as one."""
+    """A 7 x 7 x 6 block of such balls is 294 hubs in one group, more than are built as one."""
     t = sl.Similarity.translation
-    lat = sl.Lattice([((0, 0, 0), 0.55)], [(0, 1, 0, 0, 0) + RADII[0]], (5, 5, 3), t((1, 0, 0)), t((0, 1, 0)),
+    lat = sl.Lattice([((0, 0, 0), 0.55)], [(0, 1, 0, 0, 0) + RADII[0]], (7, 7, 6), t((1, 0, 0)), t((0, 1, 0)),
                      t((0, 0, 1)))
-    with pytest.raises(ValueError, match=r"lattice: is not clean \(.*balls 0 and 1 meet.*75 hubs meet so"):
+    with pytest.raises(ValueError, match=r"lattice: is not clean \(.*balls 0 and 1 meet.*294 hubs meet so"):
         lat.brep()
 
 

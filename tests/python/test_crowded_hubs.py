@@ -71,9 +71,9 @@ def test_hubs_joined_by_beams_too_short_for_their_collars_are_built_as_one(prese
 
 def test_a_beam_too_short_for_its_hubs_names_the_radius_that_fits():
     """Beams as thick as the octet's nodes: every beam is too short for its hubs' collars, and the hubs joined by
-    them (72 in 3 x 3 x 2 cells) are more than a group is built of. The refusal says why and names the beam radii
-    that fit; those build."""
-    lat = crowded_sweep.lattice("octet", 0.35, 1.0, "translation", (3, 3, 2))
+    them (all of the 5 x 5 x 4 cells') are more than a group is built of. The refusal says why and names the beam
+    radii that fit; those build."""
+    lat = crowded_sweep.lattice("octet", 0.35, 1.0, "translation", (5, 5, 4))
     with pytest.raises(ValueError) as error:
         lat.brep()
     message = str(error.value)
@@ -83,7 +83,7 @@ def test_a_beam_too_short_for_its_hubs_names_the_radius_that_fits():
     factor = float(found.group(1))
     assert 0.5 < factor < 1.0
     # The factor it names (a little less, for the rounding of the message) builds.
-    thinner = crowded_sweep.lattice("octet", 0.35, factor * 0.99, "translation", (3, 3, 2))
+    thinner = crowded_sweep.lattice("octet", 0.35, factor * 0.99, "translation", (5, 5, 4))
     assert sl.brep_properties(thinner.brep())["valid"]
 
 
