@@ -30,7 +30,6 @@
 #include <chrono>
 #include <map>
 #include <cmath>
-#include <numeric>
 #include <sstream>
 #include <stdexcept>
 
@@ -765,8 +764,8 @@ void group_short_beams(PieceBuild& b) {
 // components of the contacts and of the short beams at their hubs, each one Fuse of its members closed at
 // member_collar. The beams inside a group are no longer built; the beams leaving it start at its collars. Runs
 // after tight collars (tighten_short_beams) and before the groups of short beams, which then leave these hubs
-// alone. A group over kMaxGroupHubs hubs, or one whose
-// Fuse fails its checks, is an error naming the contacts (the lattice is not clean there).
+// alone. A group over kMaxGroupHubs hubs, or one whose Fuse fails its checks, is an error naming the contacts (the
+// lattice is not clean there).
 void group_foreign_contacts(PieceBuild& b) {
   const ForeignContacts* contacts = b.selection.foreign;
   if (contacts == nullptr || contacts->empty()) return;

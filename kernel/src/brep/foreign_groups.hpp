@@ -4,8 +4,8 @@
 // properties already measure such lattices by fusing the overlapping hubs. The B-rep does the same: the hubs of
 // every element in a contact are built as one group (hub_group.hpp), each member closed by collars on its
 // stumps and the group fused once. A beam in a contact belongs whole to its group (both its balls join, and its
-// two stumps overlap over its middle); a beam leaving a group is free of contacts, so its stump ends a quarter of
-// the way along its free length, and the beam runs on from that collar as from a crowded hub's.
+// two stumps meet at the middle of its free length); a beam leaving a group is free of contacts, so its stump ends
+// a quarter of the way along its free length, and the beam runs on from that collar as from a crowded hub's.
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -45,9 +45,10 @@ CoreKind member_kind(const std::vector<CoreStump>& stumps);
 
 // Where a member's stump ends along its beam, measured from the member's ball center: `here` is where the stump
 // runs free of its hub (its exit circle or its core's collar), `there` the same from the other ball, `length` the
-// distance between the two centers. A beam inside the group (`inner`) is covered by its two stumps, which overlap
-// over the middle half of its free length (or already overlap: a beam too short for its hubs); a beam leaving the
-// group keeps three quarters of its free length, so that two groups at its ends stay apart.
+// distance between the two centers. A beam inside the group (`inner`) is covered by its two stumps, which meet at
+// the middle of its free length (touching disks fuse more reliably than two stumps overlapping on one cone), or
+// already overlap (a beam too short for its hubs); a beam leaving the group keeps three quarters of its free
+// length, so that two groups at its ends stay apart.
 double member_collar(double here, double there, double length, bool inner);
 
 }  // namespace steady

@@ -6,7 +6,6 @@
 // not clear, another place along the beam may be (docs/brep.md, "moved cuts").
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <unordered_map>
 
 #include "brep/trim_phases.hpp"
@@ -19,7 +18,6 @@ namespace {
 // stumps' starts: nearest the middle first, never nearer a start than a tenth of the way.
 constexpr double kMovedCutPlaces[] = {0.35, 0.65, 0.2, 0.8, 0.1, 0.9};
 
-// Union-find over the balls.
 // Where the cuts of the beams between band hubs may go.
 class CutPlacer {
  public:
