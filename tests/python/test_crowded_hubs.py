@@ -25,10 +25,11 @@ def check_sweep(cases):
 
 def test_short_sweep_builds_every_crowded_design_or_says_what_to_change():
     counts = check_sweep(crowded_sweep.short_cases())
-    # Every clean design of the short sweep builds (measured: 32 of 36 to the exact volume, 3 whose properties
-    # cannot be computed checked by sampling, 1 with foreign beams meeting); before tight collars and groups of
-    # hubs, 6 were refused as too short.
-    assert counts["too short"] == 0 and counts["built"] >= 32, counts
+    # Every design of the short sweep builds (measured: 32 of 36 to the exact volume, 4 whose properties cannot be
+    # computed checked by sampling, among them the octet in the hull model with a taper, whose beams meet beams of
+    # other nodes and which was refused as not clean before its hubs were fused in groups); before tight collars and
+    # groups of hubs, 6 were refused as too short.
+    assert counts["too short"] == 0 and counts["foreign"] == 0 and counts["built"] >= 32, counts
 
 
 @pytest.mark.skipif(not os.environ.get("STEADY_LONG_TESTS"), reason="set STEADY_LONG_TESTS=1")
