@@ -4,7 +4,9 @@
 #include <BRep_Builder.hxx>
 #include <TopExp_Explorer.hxx>
 
+#include <algorithm>
 #include <limits>
+#include <utility>
 #include <sstream>
 
 #include "steady/query/clean_check.hpp"
@@ -32,6 +34,11 @@ ForeignContacts foreign_contacts(const FlatLattice& f) {
       case CleanIssueKind::CircleOverlap: break;
     }
   }
+  // A beam in many contacts was listed once per contact: each pair once is enough for every join.
+  for (auto& [a, b] : out.joined)
+    if (b < a) std::swap(a, b);
+  std::sort(out.joined.begin(), out.joined.end());
+  out.joined.erase(std::unique(out.joined.begin(), out.joined.end()), out.joined.end());
   std::ostringstream os;
   for (std::size_t i = 0; i < std::min<std::size_t>(3, report.issues.size()); ++i)
     os << (i ? "; " : "") << report.issues[i].describe();
