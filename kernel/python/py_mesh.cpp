@@ -32,7 +32,11 @@ py::dict stats_dict(const steady::LatticeMeshStats& s) {
   d["templates"] = s.templates;
   d["vertices"] = s.vertices;
   d["triangles"] = s.triangles;
+  d["foreign_groups"] = s.foreign_groups;
+  d["foreign_hubs"] = s.foreign_hubs;
+  d["short_beams"] = s.short_beams;
   d["template_seconds"] = s.template_seconds;
+  d["group_seconds"] = s.group_seconds;
   d["placing_seconds"] = s.placing_seconds;
   return d;
 }
@@ -163,6 +167,24 @@ steady::TriangleMesh lattice_mesh_of(const Lattice& lat, double tolerance, const
 
 }  // namespace
 
+// to_mesh's docstring, with the body arguments'.
+const char* const kToMeshDoc =
+  "The lattice as one closed, outward-oriented triangle mesh with no self-intersection, straight from its "
+  "definition (no B-rep; a Boolean only where hubs must be united): (vertices float64 N x 3, triangles uint32 "
+  "M x 3). tolerance: the largest distance, in model units, from a triangle to the exact ball or cone it "
+  "approximates (every vertex of a placed hub or strip lies on the exact surface); it must be > 0 and below a "
+  "quarter of the smallest ball radius. Each distinct hub shape is tessellated once per scale level and placed "
+  "as similar copies. Without a body, the hubs of elements "
+  "meeting foreign ones, and of beams too short for their collars, are united in groups (exact Booleans); "
+  "with a body, such lattices are refused. progress: as for brep(). stats: None or a dict, filled with hubs, "
+  "crowded_hubs, beams, distinct_hubs, templates, vertices, triangles, foreign_groups, foreign_hubs, "
+  "short_beams, template_seconds, group_seconds, placing_seconds (and with a body inside_hubs, crossing_hubs, "
+  "outside_hubs, band_triangles, moved_clear (band vertices within a float's resolution of the wall, moved off "
+  "it), "
+  "float_removed_triangles (made flat by rounding to the floats of STL and 3MF, removed), "
+  "boolean_seconds, and the other phases: check_seconds, plan_seconds, classify_seconds, pieces_seconds, "
+  "float_seconds, join_seconds)." STEADY_BODY_DOC;
+
 void bind_mesh(py::module_& m) {
   auto lattice = py::reinterpret_borrow<py::class_<Lattice>>(m.attr("Lattice"));
   lattice.def(
@@ -180,17 +202,7 @@ void bind_mesh(py::module_& m) {
       py::arg("tolerance"), py::arg("body") = py::none(), py::arg("inner") = py::none(),
       py::arg("progress") = py::none(), py::arg("stats") = py::none(), py::arg("policy") = "clip",
       py::arg("brep") = py::none(), py::arg("skin") = 0.0,
-      "The lattice as one closed, outward-oriented triangle mesh with no self-intersection, straight from its "
-      "definition (no B-rep, no Boolean): (vertices float64 N x 3, triangles uint32 M x 3). tolerance: the largest "
-      "distance, in model units, from a triangle to the exact ball or cone it approximates (every vertex lies on the "
-      "exact surface); it must be > 0 and below a quarter of the smallest ball radius. Each distinct hub shape is "
-      "tessellated once per scale level and placed as similar copies. progress: as for brep(). stats: None or a "
-      "dict, filled with hubs, crowded_hubs, beams, distinct_hubs, templates, vertices, triangles, "
-      "template_seconds, placing_seconds (and with a body inside_hubs, crossing_hubs, outside_hubs, "
-      "band_triangles, moved_clear (band vertices within a float's resolution of the wall, moved off it), "
-      "float_removed_triangles (made flat by rounding to the floats of STL and 3MF, removed), "
-      "boolean_seconds, and the other phases: check_seconds, plan_seconds, classify_seconds, pieces_seconds, "
-      "float_seconds, join_seconds)." STEADY_BODY_DOC);
+      kToMeshDoc);
   lattice.def(
       "write_stl",
       [](const Lattice& lat, const std::string& path, double tolerance, const std::string& name,

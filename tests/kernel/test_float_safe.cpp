@@ -29,7 +29,7 @@ TEST(FloatSafe, AnEdgeBelowAFloatCollapses) {
   TriangleMesh m = split_octahedron();
   ASSERT_TRUE(mesh_edge_report(m).closed_manifold());
   const double volume = mesh_volume(m);
-  EXPECT_EQ(make_float_safe(m), 2);
+  EXPECT_EQ(make_float_safe(m, "the band"), 2);
   EXPECT_EQ(m.triangles.size(), 8u);
   EXPECT_EQ(m.vertices.size(), 6u);
   EXPECT_TRUE(mesh_edge_report(m).closed_manifold());
@@ -41,7 +41,7 @@ TEST(FloatSafe, AMeshAlreadySafeIsOnlyRounded) {
   TriangleMesh m = split_octahedron();
   m.vertices[6].x += 0.25;  // the split is now far above a float's resolution
   const std::size_t triangles = m.triangles.size();
-  EXPECT_EQ(make_float_safe(m), 0);
+  EXPECT_EQ(make_float_safe(m, "the band"), 0);
   EXPECT_EQ(m.triangles.size(), triangles);
   EXPECT_TRUE(mesh_edge_report(m).closed_manifold());
 }

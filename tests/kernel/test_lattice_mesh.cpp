@@ -14,6 +14,7 @@
 #include <random>
 #include <sstream>
 
+#include "occ_reference.hpp"
 #include "sample_lattices.hpp"
 #include "test_lattices.hpp"
 #include "steady/core/errors.hpp"
@@ -21,6 +22,8 @@
 #include "steady/lattice/lattice_io.hpp"
 #include "steady/lattice/presets.hpp"
 #include "steady/mesh/lattice_mesh.hpp"
+#include "steady/mesh/mesh_files.hpp"
+#include "steady/mesh/trimmed_mesh.hpp"
 #include "steady/properties/lattice_properties.hpp"
 #include "steady/query/queries.hpp"
 
@@ -201,6 +204,101 @@ TEST(LatticeMesh, DumbbellLoneBallCylinderAndAbsorbedBall) {
   }
   EXPECT_EQ(cgal_check(lattice_mesh(dumbbell, {0.01})).components, 2u);
   EXPECT_EQ(cgal_check(lattice_mesh(absorbed, {0.01})).components, 1u);
+}
+
+// Elements meeting foreign ones, meshed as united groups, against OpenCASCADE's Fuse of all balls and beams (the
+// slow, obviously right twin, exact): the mesh is a closed, outward 2-manifold without self-intersection (CGAL's
+// checks), every vertex within the tolerance of the exact surface, and its volume below the exact one by at most
+// the chord bound.
+void expect_united_mesh(const FlatLattice& f, double tolerance, std::int64_t groups, std::int64_t grouped_hubs,
+                        std::size_t components, const std::string& name) {
+  SCOPED_TRACE(name);
+  std::vector<TopoDS_Shape> pieces;
+  for (const Ball& ball : f.balls) pieces.push_back(BRepPrimAPI_MakeSphere(test::occ_point(ball.center), ball.radius).Shape());
+  for (const FlatBeam& beam : f.beams)
+    pieces.push_back(test::occ_beam(f.balls[beam.a].center, beam.ra, f.balls[beam.b].center, beam.rb));
+  const std::optional<TopoDS_Shape> brute = test::occ_fuse(pieces);
+  ASSERT_TRUE(brute.has_value());
+  const double exact = test::occ_properties(*brute).volume;
+  LatticeMeshStats stats;
+  const TriangleMesh mesh = lattice_mesh(f, {tolerance}, &stats);
+  EXPECT_EQ(stats.foreign_groups, groups);
+  EXPECT_EQ(stats.foreign_hubs, grouped_hubs);
+  EXPECT_TRUE(mesh_edge_report(mesh).closed_manifold());
+  const MeshCheck check = cgal_check(mesh);
+  EXPECT_TRUE(check.closed);
+  EXPECT_TRUE(check.outward);
+  EXPECT_FALSE(check.self_intersecting);
+  EXPECT_EQ(check.components, components);
+  const double area = mesh_area(mesh);
+  EXPECT_LE(check.volume, exact * (1.0 + 1e-9));
+  EXPECT_GE(check.volume, exact - tolerance * area) << "exact " << exact;
+  // Depth in the exact union (the largest over elements of how deep a point lies in it): the Boolean's new
+  // vertices lie on two triangles, each within the tolerance of the surface (inside, or outside where a chord
+  // spans a concave crease), so within the tolerance of it.
+  std::vector<BeamCone> cones;
+  for (const FlatBeam& e : f.beams) {
+    const BeamCone cone = beam_cone({f.balls[e.a].center, e.ra}, {f.balls[e.b].center, e.rb});
+    if (cone.has_lateral_surface()) cones.push_back(cone);
+  }
+  double deepest = 0.0, outside = 0.0;
+  for (const Vec3& p : mesh.vertices) {
+    double d = -1e300;
+    for (const Ball& b : f.balls) d = std::max(d, b.radius - glm::length(p - b.center));
+    for (const BeamCone& cone : cones) {
+      const Vec3 w = p - cone.a;
+      const double x = glm::dot(w, cone.axis), r = glm::length(w - x * cone.axis);
+      if (x >= cone.ra * cone.sin_phi - 1e-9 && x <= cone.length + cone.rb * cone.sin_phi + 1e-9)
+        d = std::max(d, (cone.radius_at(x) - r) * cone.cos_phi);
+    }
+    deepest = std::max(deepest, d);
+    outside = std::max(outside, -d);
+  }
+  EXPECT_LE(deepest, tolerance * (1.0 + 1e-6));
+  EXPECT_LE(outside, tolerance);
+  // The streamed STL holds the same triangles, and reads back closed.
+  const std::string path = ::testing::TempDir() + "/united_" + std::to_string(groups) + ".stl";
+  const LatticeMeshStats streamed = write_lattice_stl(f, {tolerance}, path, name);
+  EXPECT_EQ(streamed.triangles, static_cast<std::int64_t>(mesh.triangles.size()));
+  const TriangleMesh back = read_stl(path);
+  EXPECT_TRUE(mesh_edge_report(back).closed_manifold());
+  EXPECT_NEAR(mesh_volume(back), check.volume, 1e-5 * check.volume);
+  std::remove(path.c_str());
+  std::cout << name << ": " << mesh.triangles.size() << " triangles, " << stats.foreign_groups << " groups of "
+            << stats.foreign_hubs << " hubs in " << stats.group_seconds << " s, volume " << check.volume << " exact "
+            << exact << " (bound " << tolerance * area << "), deepest vertex " << deepest << "\n";
+}
+
+TEST(LatticeMesh, ElementsMeetingForeignOnesAreUnitedInGroups) {
+  // A ball touching a beam of other nodes, two skew beams through each other, two balls of different nodes
+  // overlapping, and a clean beam beside them that keeps its own hubs (the B-rep's test, BrepBuilder).
+  const FlatLattice every_kind = make_flat_lattice(
+      {{{0, 0, 0}, 0.3}, {{4, 0, 0}, 0.3}, {{2, -2, 0.12}, 0.25}, {{2, 2, 0.12}, 0.25}, {{2, 0.15, 0.45}, 0.3},
+       {{6, 0, 0}, 0.28}, {{6.45, 0.1, 0}, 0.3}, {{6.45, 3, 0}, 0.3}, {{-3, 0, 0}, 0.3}, {{-3, 3, 0}, 0.3}},
+      {{0, 1, 0.15, 0.15}, {2, 3, 0.12, 0.18}, {1, 5, 0.15, 0.15}, {6, 7, 0.15, 0.15}, {8, 9, 0.12, 0.12},
+       {0, 8, 0.15, 0.12}});
+  expect_united_mesh(every_kind, 0.005, 2, 7, 1, "every kind of contact");
+  // Two beams of equal radius whose axes cross (a Steinmetz solid where they overlap).
+  const FlatLattice crossing = make_flat_lattice(
+      {{{0, 0, 0}, 0.2}, {{3, 0, 0}, 0.2}, {{3, 3, 0}, 0.2}, {{0, 3, 0}, 0.2}}, {{0, 2, 0.1, 0.1}, {1, 3, 0.1, 0.1}});
+  expect_united_mesh(crossing, 0.002, 1, 4, 1, "crossing beams");
+}
+
+TEST(LatticeMesh, TrimmedMeshesStillRefuseElementsMeetingForeignOnes) {
+  const FlatLattice crossing = make_flat_lattice(
+      {{{0, 0, 0}, 0.2}, {{3, 0, 0}, 0.2}, {{3, 3, 0}, 0.2}, {{0, 3, 0}, 0.2}}, {{0, 2, 0.1, 0.1}, {1, 3, 0.1, 0.1}});
+  TriangleMesh box;
+  box.vertices = {{-1, -1, -1}, {4, -1, -1}, {4, 4, -1}, {-1, 4, -1}, {-1, -1, 1}, {4, -1, 1}, {4, 4, 1}, {-1, 4, 1}};
+  box.triangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                   {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+  TrimmedMeshRequest request;
+  request.body = &box;
+  try {
+    trimmed_lattice_mesh(crossing, {0.01}, request);
+    FAIL() << "a trimmed mesh of crossing beams was made";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("lattice"), std::string::npos) << e.what();
+  }
 }
 
 TEST(LatticeMesh, BadToleranceNamesTheParameter) {

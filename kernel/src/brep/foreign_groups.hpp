@@ -1,7 +1,6 @@
 #pragma once
-// Elements that meet foreign ones: a ball touching a beam of another node, two beams with no common ball, two
-// balls (the clean check's rules 2 to 4, clean_check.hpp). No hub-by-hub construction holds there, and the
-// properties already measure such lattices by fusing the overlapping hubs. The B-rep does the same: the hubs of
+// Elements that meet foreign ones (query/foreign_contacts.hpp) in the B-rep. No hub-by-hub construction holds
+// there, and the properties already measure such lattices by fusing the overlapping hubs. The B-rep does the same: the hubs of
 // every element in a contact are built as one group (hub_group.hpp), each member closed by collars on its
 // stumps and the group fused once. A beam in a contact belongs whole to its group (both its balls join, and its
 // two stumps meet at the middle of its free length); a beam leaving a group is free of contacts, so its stump ends
@@ -13,21 +12,11 @@
 
 #include "brep/hub_core.hpp"
 #include "lattice/hub_collars.hpp"
+#include "query/foreign_contacts.hpp"
 #include "steady/lattice/beam_frustum.hpp"
 #include "steady/lattice/flat_lattice.hpp"
 
 namespace steady {
-
-struct ForeignContacts {
-  std::int64_t issue_count = 0;                                // contacts found (overlapping exit circles aside)
-  std::vector<std::pair<std::int64_t, std::int64_t>> joined;   // balls whose hubs are built in one group
-  std::vector<char> involved;                                  // per beam: it meets a foreign element
-  std::string description;                                     // the first contacts, for messages
-  bool empty() const { return issue_count == 0; }
-};
-
-// The contacts of a listing, by the clean check without its rule on exit circles (crowded hubs build those).
-ForeignContacts foreign_contacts(const FlatLattice& f);
 
 // A group member's stumps in its canonical frame (unit ball at the origin, turned by the transpose of `rotation`,
 // the hub's placement in the catalog), in the order of `stumps` ((beam, end) pairs, as the builder lists a hub's

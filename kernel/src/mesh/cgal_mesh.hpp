@@ -31,4 +31,9 @@ M to_half_edge_mesh(const TriangleMesh& m) {
   return out;
 }
 
+// A Boolean's result rounded once to doubles, without the caps it was asked to keep (fans around the given
+// centers, which no other operand touched), as an indexed mesh; `flip` turns every triangle over.
+// std::runtime_error with `cap_gone` when a center is missing (an operand cut into its cap).
+TriangleMesh without_kept_caps(const ExactMesh& m, const std::vector<Vec3>& centers, bool flip, const char* cap_gone);
+
 }  // namespace steady

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "mesh/cgal_mesh.hpp"
@@ -29,7 +30,7 @@ void round_to_floats(TriangleMesh& mesh) {
   for (Vec3& v : mesh.vertices) v = float_rounded(v);
 }
 
-std::int64_t make_float_safe(TriangleMesh& band) {
+std::int64_t make_float_safe(TriangleMesh& band, const std::string& what) {
   if (band.triangles.empty()) return 0;
   // A float converts to a double exactly, so the inexact-constructions kernel's predicates are exact on these points.
   CgalMesh m = to_half_edge_mesh<CgalMesh>(band);
@@ -43,11 +44,11 @@ std::int64_t make_float_safe(TriangleMesh& band) {
   const std::int64_t before = static_cast<std::int64_t>(m.number_of_faces());
   if (degenerate) {
     if (!PMP::remove_degenerate_faces(m))
-      throw std::runtime_error("mesh: a triangle of the trimmed band made flat by rounding to floats cannot be removed");
+      throw std::runtime_error("mesh: a triangle of " + what + " made flat by rounding to floats cannot be removed");
     m.collect_garbage();
   }
   if (PMP::does_self_intersect(m))
-    throw std::runtime_error("mesh: the trimmed band intersects itself once rounded to floats");
+    throw std::runtime_error("mesh: " + what + " intersects itself once rounded to floats");
   // Back as an indexed mesh of the vertices still in a triangle (a removal can leave one isolated).
   band.vertices.clear(), band.triangles.clear();
   std::vector<std::uint32_t> number(m.number_of_vertices() + m.number_of_removed_vertices(), UINT32_MAX);

@@ -4,6 +4,7 @@
 // reader would weld into flat triangles and non-manifold edges. So the band is rounded to floats here, once, and
 // repaired with exact predicates on the rounded points, and every writer gets the mesh it checked.
 #include <cstdint>
+#include <string>
 
 #include "steady/mesh/triangle_mesh.hpp"
 
@@ -15,10 +16,10 @@ Vec3 float_rounded(const Vec3& p);
 // Rounds every vertex of `mesh` to floats, without repair (for parts whose edges are far above a float's resolution).
 void round_to_floats(TriangleMesh& mesh);
 
-// The band (a 2-manifold, open or closed) with its vertices rounded to floats, the edges and triangles that
-// rounding made degenerate removed, and no self-intersection (CGAL's exact predicates on the rounded points).
-// Returns the number of triangles removed; std::runtime_error if a degeneracy cannot be removed or the rounded
-// band intersects itself.
-std::int64_t make_float_safe(TriangleMesh& band);
+// The band (a Boolean's result: a 2-manifold, open or closed) with its vertices rounded to floats, the edges and
+// triangles that rounding made degenerate removed, and no self-intersection (CGAL's exact predicates on the
+// rounded points). Returns the number of triangles removed; std::runtime_error naming `what` if a degeneracy
+// cannot be removed or the rounded band intersects itself.
+std::int64_t make_float_safe(TriangleMesh& band, const std::string& what);
 
 }  // namespace steady

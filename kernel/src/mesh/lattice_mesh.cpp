@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <chrono>
 
 #include "mesh/mesh_plan.hpp"
@@ -35,12 +36,22 @@ TriangleMesh lattice_mesh(const FlatLattice& f, const MeshOptions& options, Latt
   {
     Progress part(progress, 40, static_cast<std::int64_t>(plan.hubs.size() + f.beam_count()));
     tbb::parallel_for(std::size_t(0), plan.hubs.size(), [&](std::size_t h) {
-      place_hub(plan, h, mesh.vertices.data() + plan.hubs[h].first_vertex,
-                mesh.triangles.data() + plan.hubs[h].first_triangle);
+      if (plan.groups.of_hub[h] < 0)
+        place_hub(plan, h, mesh.vertices.data() + plan.hubs[h].first_vertex,
+                  mesh.triangles.data() + plan.hubs[h].first_triangle);
       if (h % 1024 == 0) part.advance(1024);
     });
+    for (const MeshGroup& g : plan.groups.groups) {
+      std::copy(g.mesh.vertices.begin(), g.mesh.vertices.end(), mesh.vertices.begin() + g.first_vertex);
+      const auto base = static_cast<std::uint32_t>(g.first_vertex);
+      for (std::size_t t = 0; t < g.mesh.triangles.size(); ++t) {
+        const Triangle& tri = g.mesh.triangles[t];
+        mesh.triangles[g.first_triangle + t] = {base + tri[0], base + tri[1], base + tri[2]};
+      }
+    }
     tbb::parallel_for(std::int64_t(0), f.beam_count(), [&](std::int64_t e) {
-      if (plan.frustums[e].exists) place_strip(plan, e, mesh.triangles.data() + plan.beam_first_triangle[e]);
+      if (plan.frustums[e].exists && !plan.groups.inner[e])
+        place_strip(plan, e, mesh.triangles.data() + plan.beam_first_triangle[e]);
       if (e % 1024 == 0) part.advance(1024);
     });
   }

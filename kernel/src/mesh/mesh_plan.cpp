@@ -14,6 +14,7 @@
 #include "lattice/hub_catalog.hpp"
 #include "lattice/hub_collars.hpp"
 #include "mesh/hub_tessellation.hpp"
+#include "query/foreign_contacts.hpp"
 #include "steady/core/errors.hpp"
 #include "steady/core/memory_budget.hpp"
 #include "steady/lattice/beam_frustum.hpp"
@@ -42,6 +43,70 @@ void check_tolerance(const FlatLattice& f, double tolerance) {
       fail_input("tolerance", g(tolerance) + " is a quarter of ball " + std::to_string(i) + "'s radius " +
                                   g(f.balls[i].radius) + " or more: use a tolerance below " +
                                   g(0.25 * f.balls[i].radius));
+}
+
+// Every beam whose hubs are built fits between their loops, or is short: its two stumps overlap, and its hubs are
+// united in a group (each stump's cap lies in the other stump, and the union drops it) when each cap stays in the
+// free part of the other stump, else refused. Then the groups: hubs joined by `contacts` or by short beams. Returns
+// per beam whether its strip (or its group) is placed.
+std::vector<char> fit_beams_and_unite(MeshPlan& plan, const std::vector<char>& built, ForeignContacts contacts,
+                                      bool unite_groups, Progress& progress) {
+  const FlatLattice& f = *plan.lattice;
+  const std::vector<BeamFrustum>& frustums = plan.frustums;
+  LatticeMeshStats& stats = plan.stats;
+  std::vector<char> placed(f.beam_count(), 0), short_beam(f.beam_count(), 0);
+  std::string first_short;
+  for (std::int64_t e = 0; e < f.beam_count(); ++e) {
+    if ((e & 4095) == 0) progress.check();
+    const MeshBeamEnd& a = plan.ends[2 * e];
+    const MeshBeamEnd& b = plan.ends[2 * e + 1];
+    if (frustums[e].exists && (a.hub < 0 || b.hub < 0))
+      throw std::runtime_error("mesh: beam " + std::to_string(e) + " lost a hub");
+    if (!frustums[e].exists || !built[plan.hubs[a.hub].templ] || !built[plan.hubs[b.hub].templ]) continue;
+    auto position = [&](const MeshBeamEnd& end) {
+      return plan.templates[plan.hubs[end.hub].templ].loop_position[end.slot] * f.balls[plan.hubs[end.hub].ball].radius;
+    };
+    const double at_a = position(a), at_b = position(b), length = frustums[e].cone.length;
+    placed[e] = 1;
+    if (at_a + at_b < length * (1.0 - 1e-9)) continue;
+    // The cap of one stump inside the other's solid: beyond the middle of the other ball's tangent plane and exit
+    // circle, where the cone's circles lie in that ball (hub_union.cpp draws its frustums from there).
+    const BeamCone& cone = frustums[e].cone;
+    const double inside_a = 0.5 * (cone.ra * cone.sin_phi + frustums[e].exit_a);
+    const double inside_b = 0.5 * (-cone.rb * cone.sin_phi + frustums[e].exit_b);
+    if (!unite_groups || !(length - at_a > inside_b && length - at_b > inside_a))
+      fail_input("hub", "beam " + std::to_string(e) + " (balls " + std::to_string(f.beams[e].a) + " and " +
+                            std::to_string(f.beams[e].b) + ") is too short for the collars of its crowded hubs (" +
+                            g(at_a) + " + " + g(at_b) + " of its length " + g(length) +
+                            (unite_groups ? ", reaching past each other into the balls" : "") +
+                            "): thinner beams or smaller balls there");
+    short_beam[e] = 1;
+    contacts.joined.emplace_back(f.beams[e].a, f.beams[e].b);
+    if (!stats.short_beams++)
+      first_short = "beam " + std::to_string(e) + " (balls " + std::to_string(f.beams[e].a) + " and " +
+                    std::to_string(f.beams[e].b) + ": " + g(at_a) + " + " + g(at_b) + " of its length " +
+                    g(length) + ")";
+  }
+  if (!contacts.joined.empty()) {
+    const auto t1 = std::chrono::steady_clock::now();
+    Progress part(progress, 30);
+    try {
+      plan.groups = mesh_groups(plan, contacts, short_beam, part);
+    } catch (const std::runtime_error& e) {
+      // Two tessellations of one cone overlap along a short beam, and the union's slivers can fold once rounded.
+      if (!stats.short_beams) throw;
+      fail_input("hub", std::to_string(stats.short_beams) + " beams are too short for the collars of their crowded "
+                            "hubs (the first: " + first_short + "), and the mesh could not unite their hubs (" +
+                            e.what() + "): thinner beams or smaller balls there (the B-rep, brep(), builds them)");
+    }
+    stats.foreign_groups = static_cast<std::int64_t>(plan.groups.groups.size());
+    for (const MeshGroup& group : plan.groups.groups) stats.foreign_hubs += static_cast<std::int64_t>(group.hubs.size());
+    stats.group_seconds = seconds_since(t1);
+  } else {
+    plan.groups.of_hub.assign(plan.hubs.size(), -1);
+    plan.groups.inner.assign(f.beam_count(), 0);
+  }
+  return placed;
 }
 
 }  // namespace
@@ -88,13 +153,15 @@ void strip_triangles(const std::vector<Vec3>& va, const std::vector<std::uint32_
 }
 
 MeshPlan plan_lattice_mesh(const FlatLattice& f, const MeshOptions& options, Progress& progress,
-                           const HubsNeeded& needed) {
+                           const HubsNeeded& needed, bool unite_groups) {
   MeshPlan plan;
   plan.lattice = &f;
   LatticeMeshStats& stats = plan.stats;
   check_tolerance(f, options.tolerance);
   progress.set_total(100);
-  require_clean_for_build(f);  // crowded hubs are built; elements meeting foreign ones are not
+  ForeignContacts contacts;  // elements meeting foreign ones, united in groups (or refused)
+  if (unite_groups) contacts = foreign_contacts(f);
+  else require_clean_for_build(f);  // crowded hubs are built; elements meeting foreign ones are not
   progress.advance(5);
   plan.frustums = beam_frustums(f);
   const std::vector<BeamFrustum>& frustums = plan.frustums;
@@ -149,7 +216,7 @@ MeshPlan plan_lattice_mesh(const FlatLattice& f, const MeshOptions& options, Pro
   const auto t0 = std::chrono::steady_clock::now();
   plan.templates.resize(keys.size());
   {
-    Progress part(progress, 90, static_cast<std::int64_t>(keys.size()));
+    Progress part(progress, unite_groups ? 60 : 90, static_cast<std::int64_t>(keys.size()));
     tbb::parallel_for(std::size_t(0), keys.size(), [&](std::size_t t) {
       part.check();
       if (!built[t]) {
@@ -172,33 +239,29 @@ MeshPlan plan_lattice_mesh(const FlatLattice& f, const MeshOptions& options, Pro
   }
   stats.template_seconds = seconds_since(t0);
 
-  // Sizes and offsets; every beam fits between its hubs' loops.
-  for (MeshHub& h : plan.hubs) {
+  const std::vector<char> placed = fit_beams_and_unite(plan, built, contacts, unite_groups, progress);
+
+  // Sizes and offsets (a grouped hub has its place in its group's mesh).
+  for (std::size_t k = 0; k < plan.hubs.size(); ++k) {
+    MeshHub& h = plan.hubs[k];
     h.first_vertex = plan.vertex_count;
     h.first_triangle = plan.triangle_count;
+    if (plan.groups.of_hub[k] >= 0) continue;
     plan.vertex_count += plan.templates[h.templ].vertices.size();
     plan.triangle_count += plan.templates[h.templ].triangles.size();
+  }
+  for (MeshGroup& g : plan.groups.groups) {
+    g.first_vertex = plan.vertex_count;
+    g.first_triangle = plan.triangle_count;
+    plan.vertex_count += g.mesh.vertices.size();
+    plan.triangle_count += g.mesh.triangles.size();
   }
   plan.beam_first_triangle.assign(f.beam_count() + 1, plan.triangle_count);
   for (std::int64_t e = 0; e < f.beam_count(); ++e) {
     if ((e & 4095) == 0) progress.check();
     std::uint64_t n = 0;
-    const MeshBeamEnd& a = plan.ends[2 * e];
-    const MeshBeamEnd& b = plan.ends[2 * e + 1];
-    if (frustums[e].exists && (a.hub < 0 || b.hub < 0))
-      throw std::runtime_error("mesh: beam " + std::to_string(e) + " lost a hub");
-    if (frustums[e].exists && built[plan.hubs[a.hub].templ] && built[plan.hubs[b.hub].templ]) {
-      auto position = [&](const MeshBeamEnd& end) {
-        return plan.templates[plan.hubs[end.hub].templ].loop_position[end.slot] *
-               f.balls[plan.hubs[end.hub].ball].radius;
-      };
-      const double at_a = position(a), at_b = position(b), length = frustums[e].cone.length;
-      if (!(at_a + at_b < length * (1.0 - 1e-9)))
-        fail_input("hub", "beam " + std::to_string(e) + " (balls " + std::to_string(f.beams[e].a) + " and " +
-                              std::to_string(f.beams[e].b) + ") is too short for the collars of its crowded hubs (" +
-                              g(at_a) + " + " + g(at_b) + " of its length " + g(length) +
-                              "): thinner beams or smaller balls there");
-      n = strip_size(plan, e);
+    if (placed[e]) {
+      if (!plan.groups.inner[e]) n = strip_size(plan, e);  // an inner beam's strip is in its group's mesh
       ++stats.beams;
     }
     plan.beam_first_triangle[e + 1] = plan.beam_first_triangle[e] + n;
@@ -216,6 +279,12 @@ MeshPlan plan_lattice_mesh(const FlatLattice& f, const MeshOptions& options, Pro
 Vec3 placed_vertex(const MeshPlan& plan, std::size_t h, std::uint32_t v) {
   const Ball& ball = plan.lattice->balls[plan.hubs[h].ball];
   return ball.center + (ball.radius * plan.catalog.placements[h].rotation) * plan.templates[plan.hubs[h].templ].vertices[v];
+}
+
+std::uint64_t mesh_vertex(const MeshPlan& plan, std::size_t h, std::uint32_t v) {
+  const int g = plan.groups.of_hub[h];
+  if (g < 0) return plan.hubs[h].first_vertex + v;
+  return plan.groups.groups[g].first_vertex + plan.groups.loop_vertex.at(static_cast<std::uint64_t>(h) << 32 | v);
 }
 
 void place_hub(const MeshPlan& plan, std::size_t h, Vec3* vertices, Triangle* triangles) {
@@ -241,9 +310,8 @@ void strip_loops(const MeshPlan& plan, std::int64_t e, std::vector<Vec3> (&point
                  std::vector<std::uint32_t> (&index)[2]) {
   for (int end = 0; end < 2; ++end) {
     const MeshBeamEnd& be = plan.ends[2 * e + end];
-    const MeshHub& h = plan.hubs[be.hub];
-    for (std::uint32_t v : plan.templates[h.templ].loops[be.slot]) {
-      index[end].push_back(static_cast<std::uint32_t>(h.first_vertex + v));
+    for (std::uint32_t v : plan.templates[plan.hubs[be.hub].templ].loops[be.slot]) {
+      index[end].push_back(static_cast<std::uint32_t>(mesh_vertex(plan, be.hub, v)));
       points[end].push_back(placed_vertex(plan, be.hub, v));
     }
   }

@@ -10,6 +10,7 @@
 
 #include "lattice/hub_catalog.hpp"
 #include "mesh/hub_tessellation.hpp"
+#include "mesh/mesh_groups.hpp"
 #include "steady/lattice/beam_frustum.hpp"
 #include "steady/lattice/flat_lattice.hpp"
 #include "steady/mesh/lattice_mesh.hpp"
@@ -36,7 +37,8 @@ struct MeshPlan {
   std::vector<MeshBeamEnd> ends;  // 2 per beam: at a, at b
   HubCatalog catalog;
   std::vector<HubTemplate> templates;
-  std::vector<std::uint64_t> beam_first_triangle;  // beam_count + 1 entries; strips follow all hubs
+  MeshGroups groups;                               // hubs of elements meeting foreign ones, united (mesh_groups.hpp)
+  std::vector<std::uint64_t> beam_first_triangle;  // beam_count + 1 entries; strips follow all hubs and groups
   std::uint64_t vertex_count = 0, triangle_count = 0;
   LatticeMeshStats stats;
 };
@@ -54,9 +56,13 @@ using HubsNeeded = std::function<std::vector<char>(const MeshPlan&)>;
 
 // Checks the options and the lattice (InvalidInput naming "tolerance", "lattice" or "hub"), builds the templates:
 // all of them, or with `needed` only those of the hubs it names (the others stay empty, and the strips of beams
-// at such hubs are not counted).
+// at such hubs are not counted). Elements meeting foreign ones are united in groups (mesh_groups.hpp) with
+// `unite_groups`, else refused (InvalidInput "lattice", naming them).
 MeshPlan plan_lattice_mesh(const FlatLattice& lattice, const MeshOptions& options, Progress& progress,
-                           const HubsNeeded& needed = {});
+                           const HubsNeeded& needed = {}, bool unite_groups = true);
+
+// Index in the whole mesh of vertex v of hub h's template (a loop's vertex when the hub is in a group).
+std::uint64_t mesh_vertex(const MeshPlan& plan, std::size_t h, std::uint32_t v);
 
 // Vertex v of hub h's template in place.
 Vec3 placed_vertex(const MeshPlan& plan, std::size_t h, std::uint32_t v);

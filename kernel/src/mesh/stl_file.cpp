@@ -121,13 +121,23 @@ LatticeMeshStats write_lattice_stl(const FlatLattice& lattice, const MeshOptions
     }
   };
   const std::size_t hubs = plan.hubs.size();
-  auto hub_first = [&](std::size_t h) { return h < hubs ? plan.hubs[h].first_triangle : plan.beam_first_triangle[0]; };
+  const std::vector<MeshGroup>& groups = plan.groups.groups;
+  auto group_first = [&](std::size_t g) { return g < groups.size() ? groups[g].first_triangle : plan.beam_first_triangle[0]; };
+  auto hub_first = [&](std::size_t h) { return h < hubs ? plan.hubs[h].first_triangle : group_first(0); };
   run(hubs, hub_first, [&](std::size_t h, char* out) {
+    if (plan.groups.of_hub[h] >= 0) return;  // in its group's mesh
     const HubTemplate& t = plan.templates[plan.hubs[h].templ];
     std::vector<Vec3> v(t.vertices.size());
     for (std::size_t k = 0; k < v.size(); ++k) v[k] = placed_vertex(plan, h, static_cast<std::uint32_t>(k));
     for (const Triangle& tri : t.triangles) {
       put_record(out, v[tri[0]], v[tri[1]], v[tri[2]]);
+      out += kRecordBytes;
+    }
+  });
+  run(groups.size(), group_first, [&](std::size_t g, char* out) {
+    const TriangleMesh& m = groups[g].mesh;
+    for (const Triangle& tri : m.triangles) {
+      put_record(out, m.vertices[tri[0]], m.vertices[tri[1]], m.vertices[tri[2]]);
       out += kRecordBytes;
     }
   });

@@ -7,8 +7,6 @@
 #include <array>
 #include <cmath>
 #include <chrono>
-#include <cstring>
-#include <set>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -17,6 +15,7 @@
 #include "mesh/cgal_mesh.hpp"
 #include "mesh/float_safe.hpp"
 #include "mesh/mesh_plan.hpp"
+#include "mesh/vertex_key.hpp"
 #include "steady/core/errors.hpp"
 
 namespace steady {
@@ -24,23 +23,6 @@ namespace steady {
 namespace {
 
 namespace PMP = CGAL::Polygon_mesh_processing;
-using Key = std::array<double, 3>;
-
-Key key(const Vec3& p) { return {p.x, p.y, p.z}; }
-
-// Vertices are matched bit for bit (the join needs no tolerance): a hash of the coordinates' bits.
-struct KeyHash {
-  std::size_t operator()(const Key& k) const {
-    std::size_t h = 0;
-    for (double d : k) {
-      std::uint64_t u;
-      std::memcpy(&u, &d, sizeof u);
-      h = (h ^ u) * 0x100000001b3ULL + (h >> 29);
-    }
-    return h;
-  }
-};
-
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -131,43 +113,7 @@ struct Piece {
   }
 };
 
-// The band after its Boolean, rounded once, without the caps it kept (their fans, untouched by the Boolean), as
-// an indexed mesh; `flip` turns every triangle over.
-TriangleMesh band_result(const ExactMesh& m, const std::vector<Vec3>& centers, bool flip) {
-  std::set<Key> center_keys;
-  for (const Vec3& c : centers) center_keys.insert(key(c));
-  const std::size_t slots = m.number_of_vertices() + m.number_of_removed_vertices();
-  std::vector<Vec3> point(slots);
-  std::vector<char> is_center(slots, 0), dropped(m.number_of_faces() + m.number_of_removed_faces(), 0);
-  std::size_t found = 0;
-  for (const auto v : m.vertices()) {
-    const auto& p = m.point(v);
-    point[v] = Vec3(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
-    if (center_keys.empty() || !center_keys.count(key(point[v]))) continue;
-    is_center[v] = 1, ++found;
-    for (const auto f : CGAL::faces_around_target(m.halfedge(v), m)) {
-      if (f == ExactMesh::null_face()) throw std::runtime_error("mesh: a cap kept by the Boolean was opened by it");
-      dropped[f] = 1;
-    }
-  }
-  if (found != center_keys.size())
-    throw std::runtime_error("mesh: the surface cut into an element classified clear of it (a cap is gone)");
-  TriangleMesh out;
-  std::vector<std::uint32_t> number(slots, UINT32_MAX);
-  for (const auto f : m.faces()) {
-    if (dropped[f]) continue;
-    Triangle t;
-    int k = 0;
-    for (const auto v : CGAL::vertices_around_face(m.halfedge(f), m)) {
-      if (is_center[v]) throw std::runtime_error("mesh: a cap's center is left in the band");
-      if (number[v] == UINT32_MAX) number[v] = static_cast<std::uint32_t>(out.vertices.size()), out.vertices.push_back(point[v]);
-      t[k++] = number[v];
-    }
-    if (flip) std::swap(t[1], t[2]);
-    out.triangles.push_back(t);
-  }
-  return out;
-}
+constexpr const char* kCapGone = "mesh: the surface cut into an element classified clear of it (a cap is gone)";
 
 // The band through one Boolean. Without a skin: band ∩ body. With one, the part is (lattice ∩ body) ∪ skin, which
 // is (lattice ∩ inner) ∪ skin since the skin is body minus inner: the band is cut at the inner surface only, and
@@ -180,26 +126,26 @@ TriangleMesh band_boolean(const TriangleMesh& band, const std::vector<Vec3>& kep
     ExactMesh band_mesh = to_half_edge_mesh<ExactMesh>(band), body = to_half_edge_mesh<ExactMesh>(*request.body), result;
     if (!PMP::corefine_and_compute_intersection(band_mesh, body, result))
       throw std::runtime_error("mesh: CGAL could not cut the lattice's boundary band at the body's surface");
-    return band_result(result, kept_caps, false);
+    return without_kept_caps(result, kept_caps, false, kCapGone);
   }
   ExactMesh inner = to_half_edge_mesh<ExactMesh>(*request.inner);
-  if (band.triangles.empty()) return band_result(inner, {}, true);
+  if (band.triangles.empty()) return without_kept_caps(inner, {}, true, kCapGone);
   ExactMesh band_mesh = to_half_edge_mesh<ExactMesh>(band), result;
   if (!PMP::corefine_and_compute_difference(inner, band_mesh, result))
     throw std::runtime_error("mesh: CGAL could not cut the lattice's boundary band at the skin's inner surface");
-  return band_result(result, kept_caps, true);
+  return without_kept_caps(result, kept_caps, true, kCapGone);
 }
 
 // The inside part and the band's result (and with a skin, the body's surface) as one mesh. Joined along the loops
 // between them: the band's copies of those vertices are bit for bit the inside part's.
 TriangleMesh joined(TriangleMesh inside, const TriangleMesh& band, const TriangleMesh* outer) {
   TriangleMesh out = std::move(inside);
-  std::unordered_map<Key, std::uint32_t, KeyHash> band_vertex;
+  std::unordered_map<VertexKey, std::uint32_t, VertexKeyHash> band_vertex;
   band_vertex.reserve(band.vertices.size());
-  for (std::uint32_t i = 0; i < band.vertices.size(); ++i) band_vertex.emplace(key(band.vertices[i]), i);
+  for (std::uint32_t i = 0; i < band.vertices.size(); ++i) band_vertex.emplace(vertex_key(band.vertices[i]), i);
   std::vector<std::uint32_t> to_out(band.vertices.size(), UINT32_MAX);
   for (std::uint32_t i = 0; i < out.vertices.size(); ++i) {
-    const auto it = band_vertex.find(key(out.vertices[i]));
+    const auto it = band_vertex.find(vertex_key(out.vertices[i]));
     if (it != band_vertex.end() && to_out[it->second] == UINT32_MAX) to_out[it->second] = i;
   }
   for (std::size_t i = 0; i < band.vertices.size(); ++i)
@@ -246,11 +192,11 @@ std::int64_t keep_clear(const TrimSurface& surface, Piece& inside, Piece& band) 
   for (const Vec3& v : band.mesh.vertices) largest = std::max({largest, std::abs(v.x), std::abs(v.y), std::abs(v.z)});
   const auto moves = surface.clear_places(band.mesh.vertices, std::ldexp(largest, -19));
   if (moves.empty()) return 0;
-  std::unordered_map<Key, Vec3, KeyHash> place;
-  for (const auto& [i, p] : moves) place.emplace(key(band.mesh.vertices[i]), p);
+  std::unordered_map<VertexKey, Vec3, VertexKeyHash> place;
+  for (const auto& [i, p] : moves) place.emplace(vertex_key(band.mesh.vertices[i]), p);
   for (std::vector<Vec3>* points : {&band.mesh.vertices, &inside.mesh.vertices, &band.cap_centers})
     for (Vec3& v : *points) {
-      const auto it = place.find(key(v));
+      const auto it = place.find(vertex_key(v));
       if (it != place.end()) v = it->second;
     }
   return static_cast<std::int64_t>(moves.size());
@@ -274,10 +220,13 @@ TriangleMesh trimmed_lattice_mesh(const FlatLattice& f, const MeshOptions& optio
   {
     // Templates only for the hubs that are placed or hold a loop of a placed strip.
     Progress part(progress, 40);
-    plan = plan_lattice_mesh(f, options, part, [&](const MeshPlan& p) {
-      hubs = surface.hubs(p);
-      return hubs_needed(p, hubs);
-    });
+    plan = plan_lattice_mesh(
+        f, options, part,
+        [&](const MeshPlan& p) {
+          hubs = surface.hubs(p);
+          return hubs_needed(p, hubs);
+        },
+        false);  // elements meeting foreign ones are not trimmed yet (docs/mesh.md)
   }
   stats.plan_seconds = seconds_since(clock);
   clock = std::chrono::steady_clock::now();
@@ -297,7 +246,7 @@ TriangleMesh trimmed_lattice_mesh(const FlatLattice& f, const MeshOptions& optio
   clock = std::chrono::steady_clock::now();
   // Every writer stores floats: the band is rounded and repaired here, the rest (edges far above a float's
   // resolution) only rounded; the join still matches bit for bit, both sides rounded alike.
-  stats.float_removed_triangles = make_float_safe(band_done);
+  stats.float_removed_triangles = make_float_safe(band_done, "the trimmed band");
   round_to_floats(inside.mesh);
   stats.float_seconds = seconds_since(clock);
   progress.advance(40);

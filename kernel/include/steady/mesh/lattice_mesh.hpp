@@ -33,7 +33,11 @@ struct LatticeMeshStats {
   std::int64_t templates = 0;        // (shape, scale level) pairs tessellated
   std::int64_t vertices = 0;
   std::int64_t triangles = 0;
+  std::int64_t foreign_groups = 0;   // groups of hubs united: their elements meet foreign ones, or a short beam
+  std::int64_t foreign_hubs = 0;     // hubs in those groups
+  std::int64_t short_beams = 0;      // beams too short for their hubs' collars, whose two hubs join a group
   double template_seconds = 0.0;     // tessellating the templates
+  double group_seconds = 0.0;        // uniting the groups (CGAL's exact corefinement)
   double placing_seconds = 0.0;      // placing copies and strips
 };
 
