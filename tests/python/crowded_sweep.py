@@ -7,8 +7,9 @@ whose properties cannot be computed (then checked against sampling its membershi
 different hubs meet (the clean check's business, not a hub's), is refused because a beam is too short for the
 collars of its two crowded hubs (the message must name the beam), or fails.
 
-`python3 crowded_sweep.py [--long] [--trim]` prints every case and the counts (--trim: each design trimmed into a box
-with a skin instead, checked against sampling); test_crowded_hubs.py runs the short sweep.
+`python3 crowded_sweep.py [--long] [--trim | --mesh]` prints every case and the counts (--trim: each design trimmed
+into a box with a skin instead, checked against sampling; --mesh: each design as a mesh, run_mesh_case);
+test_crowded_hubs.py runs the short sweep, test_mesh.py the short mesh sweep.
 """
 import itertools
 import math
@@ -177,6 +178,41 @@ def run_trim_case(preset, node_fraction, ratio, step):
     return "built", detail, seconds
 
 
+def run_mesh_case(preset, node_fraction, ratio, step):
+    """The same designs (2 x 2 x 2 cells) as a mesh at a tolerance of 0.02 node radii: 'built' (closed and
+    oriented, no vertex farther than the tolerance outside the solid, the properties' volume within the chord
+    bound), 'sampled' (the same against sampling where the properties cannot be computed), 'too short' (refused
+    naming a beam too short for its hubs' collars) or 'failed'."""
+    from test_mesh import edge_report, volume_and_area
+    lat = lattice(preset, node_fraction, ratio, step, (2, 2, 2))
+    tolerance = 0.02 * node_fraction * sl.preset(preset)["neighbour_distance"]
+    start = time.perf_counter()
+    stats = {}
+    try:
+        vertices, triangles = lat.to_mesh(tolerance, stats=stats)
+    except (ValueError, RuntimeError) as error:
+        message = str(error)
+        named = isinstance(error, ValueError) and "too short for the collars" in message and "beam " in message
+        return "too short" if named else "failed", message[:300], time.perf_counter() - start
+    seconds = time.perf_counter() - start
+    volume, area = volume_and_area(vertices, triangles)
+    outside = float(lat.distance(vertices).max())
+    detail = "%d triangles, %d hubs in %d groups (%d short beams, %.2f s), volume %.5f, bound %.5f, outside %.1e" % (
+        len(triangles), stats["foreign_hubs"], stats["foreign_groups"], stats["short_beams"], stats["group_seconds"],
+        volume, tolerance * area, outside)
+    closed = edge_report(triangles) == (0, 0, 0) and outside <= tolerance
+    try:
+        exact = lat.properties()["volume"]
+    except (ValueError, RuntimeError):
+        estimate, sigma = sampled_volume(lat)
+        detail += ", sampled %.5f +- %.5f" % (estimate, sigma)
+        inside = estimate - 5 * sigma - tolerance * area <= volume <= estimate + 5 * sigma
+        return ("sampled" if closed and inside else "failed"), detail, seconds
+    detail += ", exact %.5f" % exact
+    inside = exact - tolerance * area <= volume <= exact * (1 + 1e-9)
+    return ("built" if closed and inside else "failed"), detail, seconds
+
+
 def sweep(cases, out=sys.stdout, run=run_case):
     counts = {"built": 0, "sampled": 0, "foreign": 0, "too short": 0, "failed": 0}
     results = []
@@ -193,4 +229,4 @@ def sweep(cases, out=sys.stdout, run=run_case):
 
 if __name__ == "__main__":
     sweep(long_cases() if "--long" in sys.argv else short_cases(),
-          run=run_trim_case if "--trim" in sys.argv else run_case)
+          run=run_trim_case if "--trim" in sys.argv else run_mesh_case if "--mesh" in sys.argv else run_case)

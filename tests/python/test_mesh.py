@@ -87,6 +87,15 @@ def test_dense_lattices_whose_hubs_meet_are_meshed_closed_by_united_groups(prese
     assert volume_and_area(back_vertices, back_triangles)[0] == pytest.approx(volume, rel=1e-5)
 
 
+def test_the_short_crowded_sweep_meshes_every_design_or_names_a_short_beam():
+    # Issue 17's short sweep (36 designs) as meshes: each closed, within the tolerance and the chord bound of the
+    # properties or of sampling, or refused naming a beam too short for its hubs' collars; never another error.
+    from crowded_sweep import run_mesh_case, short_cases, sweep
+    counts, results = sweep(short_cases(), run=run_mesh_case)
+    assert counts["failed"] == 0, [r for r in results if r[1] == "failed"]
+    assert counts["built"] + counts["sampled"] >= 32, counts
+
+
 def test_a_beam_too_short_whose_hubs_cannot_be_united_names_it():
     # The FCC with beams as thick as its nodes: the two tessellations of each short beam's cone overlap, and the
     # union's slivers fold once rounded to floats; the refusal names the first short beam and what helps.
