@@ -62,8 +62,9 @@ struct LatticeBrep {
 };
 
 // The whole lattice. Hubs whose exit circles overlap (the hull model, crowded hubs) are built from cores; hubs
-// joined by beams too short for their collars get tight collars, or are built as one (groups of up to 64); any
-// other issue of the clean check (elements meeting foreign ones) throws InvalidInput naming the first offenders.
+// joined by beams too short for their collars get tight collars, or are built as one, and so are the hubs of
+// elements meeting foreign ones (brep/foreign_groups.hpp; groups of up to 256 hubs, larger ones throw
+// InvalidInput naming the contacts).
 LatticeBrep build_lattice_brep(const FlatLattice& lattice, SeamPreference seams = SeamPreference::FewestCrossings,
                                Progress& progress = no_progress());
 LatticeBrep build_lattice_brep(const Lattice& lattice);
