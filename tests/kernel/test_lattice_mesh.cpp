@@ -23,7 +23,6 @@
 #include "steady/lattice/presets.hpp"
 #include "steady/mesh/lattice_mesh.hpp"
 #include "steady/mesh/mesh_files.hpp"
-#include "steady/mesh/trimmed_mesh.hpp"
 #include "steady/properties/lattice_properties.hpp"
 #include "steady/query/queries.hpp"
 
@@ -282,23 +281,6 @@ TEST(LatticeMesh, ElementsMeetingForeignOnesAreUnitedInGroups) {
   const FlatLattice crossing = make_flat_lattice(
       {{{0, 0, 0}, 0.2}, {{3, 0, 0}, 0.2}, {{3, 3, 0}, 0.2}, {{0, 3, 0}, 0.2}}, {{0, 2, 0.1, 0.1}, {1, 3, 0.1, 0.1}});
   expect_united_mesh(crossing, 0.002, 1, 4, 1, "crossing beams");
-}
-
-TEST(LatticeMesh, TrimmedMeshesStillRefuseElementsMeetingForeignOnes) {
-  const FlatLattice crossing = make_flat_lattice(
-      {{{0, 0, 0}, 0.2}, {{3, 0, 0}, 0.2}, {{3, 3, 0}, 0.2}, {{0, 3, 0}, 0.2}}, {{0, 2, 0.1, 0.1}, {1, 3, 0.1, 0.1}});
-  TriangleMesh box;
-  box.vertices = {{-1, -1, -1}, {4, -1, -1}, {4, 4, -1}, {-1, 4, -1}, {-1, -1, 1}, {4, -1, 1}, {4, 4, 1}, {-1, 4, 1}};
-  box.triangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
-                   {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
-  TrimmedMeshRequest request;
-  request.body = &box;
-  try {
-    trimmed_lattice_mesh(crossing, {0.01}, request);
-    FAIL() << "a trimmed mesh of crossing beams was made";
-  } catch (const InvalidInput& e) {
-    EXPECT_NE(std::string(e.what()).find("lattice"), std::string::npos) << e.what();
-  }
 }
 
 TEST(LatticeMesh, BadToleranceNamesTheParameter) {

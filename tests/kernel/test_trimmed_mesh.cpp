@@ -15,6 +15,7 @@
 
 #include <tbb/global_control.h>
 
+#include "brick_definition.hpp"
 #include "steady/core/errors.hpp"
 #include "steady/lattice/flat_lattice.hpp"
 #include "steady/lattice/presets.hpp"
@@ -183,6 +184,30 @@ TEST(TrimmedMesh, CrowdedAndHullModelHubs) {
   const Prism hexagon{{3.0, 3.0, 0.0}, 2.9, 0.45, 5.2, 6, 0.1};
   expect_trimmed(preset_lattice("octet", {3, 3, 3}, 2.0, 0.3, 0.24), hexagon, 0.0, 0.01, "thick octet");
   expect_trimmed(preset_lattice("BCC", {3, 3, 3}, 2.0, 0.25, 0.0), hexagon, 0.3, 0.01, "hull BCC, skin");
+}
+
+// A diamond lattice tapered along U (cells of 1, nodes 0.45 of the neighbour distance, beams half their nodes): its
+// nodes meet nodes they share no beam with, so its hubs are meshed as united groups (mesh_groups.hpp), and a group
+// the surface crosses goes through the band's Boolean whole.
+TEST(TrimmedMesh, HubsUnitedInGroupsAreTrimmedAsOnePiece) {
+  const PresetCell& cell = preset_cell("diamond");
+  const double node = 0.45 * cell.neighbour_distance;
+  test::BrickDefinition d;
+  for (const Vec3& b : cell.basis) d.nodes.push_back({b, node});
+  for (BeamPattern p : preset_beam_patterns(cell)) {
+    p.from_radius = p.to_radius = 0.5 * node;
+    d.beams.push_back(p);
+  }
+  d.counts = {3, 3, 3};
+  d.u = {Similarity::dilation(1.05, {-20.0, 0.5, 0.5})};
+  d.v = {Similarity::translation({0, 1, 0})};
+  d.w = {Similarity::translation({0, 0, 1})};
+  const Lattice diamond(d);
+  LatticeMeshStats whole;
+  lattice_mesh(diamond, {0.01}, &whole);
+  EXPECT_GT(whole.foreign_groups, 0);
+  const Prism hexagon{{1.5, 1.5, 0.0}, 1.2, 0.3, 2.2, 6, 0.1};
+  for (double skin : {0.0, 0.15}) expect_trimmed(diamond, hexagon, skin, 0.01, "tapered diamond, skin " + std::to_string(skin));
 }
 
 // The lattice vertex nearest height 3.3 within 1.5 of `center` across (a box's middle, not its edges).

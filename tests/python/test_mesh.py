@@ -96,13 +96,42 @@ def test_the_short_crowded_sweep_meshes_every_design_or_names_a_short_beam():
     assert counts["built"] + counts["sampled"] >= 32, counts
 
 
+def box_mesh(lo, hi):
+    """An axis-aligned cube [lo, hi]^3 as a closed, outward triangle mesh."""
+    v = np.array([[x, y, z] for z in (lo, hi) for y in (lo, hi) for x in (lo, hi)], float)
+    t = np.array([[0, 2, 1], [1, 2, 3], [4, 5, 6], [5, 7, 6], [0, 1, 4], [1, 5, 4], [2, 6, 3], [3, 6, 7],
+                  [0, 4, 2], [2, 4, 6], [1, 3, 5], [3, 7, 5]], np.uint32)
+    return v, t
+
+
+def test_a_trimmed_mesh_unites_the_hubs_of_nodes_meeting_other_nodes():
+    # The tapered diamond with nodes 0.45 of the neighbour distance (nodes meet nodes they share no beam with)
+    # trimmed into the sweep's box with a skin: closed, and the sampled volume of lattice-in-inner-box plus skin
+    # within the chord bound.
+    from crowded_sweep import TRIM_BOX, TRIM_SKIN, lattice, sampled_trimmed_volume
+    lat = lattice("diamond", 0.45, 0.5, "taper", (3, 3, 3))
+    corner, edge = TRIM_BOX
+    tolerance, stats = 0.005, {}
+    vertices, triangles = lat.to_mesh(tolerance, body=box_mesh(corner, corner + edge),
+                                      inner=box_mesh(corner + TRIM_SKIN, corner + edge - TRIM_SKIN), stats=stats)
+    assert stats["foreign_groups"] > 0 and stats["crossing_hubs"] > 0
+    assert edge_report(triangles) == (0, 0, 0)
+    volume, area = volume_and_area(vertices, triangles)
+    estimate, sigma = sampled_trimmed_volume(lat, TRIM_SKIN)
+    assert estimate - 5 * sigma - tolerance * area <= volume <= estimate + 5 * sigma, (volume, estimate, sigma)
+
+
 def test_a_beam_too_short_whose_hubs_cannot_be_united_names_it():
     # The FCC with beams as thick as its nodes: the two tessellations of each short beam's cone overlap, and the
     # union's slivers fold once rounded to floats; the refusal names the first short beam and what helps.
     from crowded_sweep import lattice
     lat = lattice("FCC", 0.35, 1.0, "translation", (2, 2, 2))
+    tolerance = 0.02 * 0.35 * sl.preset("FCC")["neighbour_distance"]
     with pytest.raises(ValueError, match=r"beams are too short for the collars.*beam 0 \(balls 0 and 1.*thinner beams"):
-        lat.to_mesh(0.02 * 0.35 * sl.preset("FCC")["neighbour_distance"])
+        lat.to_mesh(tolerance)
+    # Trimmed, a short beam is refused at once (the band's Boolean would cut the slivers of its two tessellations).
+    with pytest.raises(ValueError, match=r"beam \d+ \(balls \d+ and \d+\) is too short for the collars"):
+        lat.to_mesh(tolerance, body=box_mesh(0.3, 1.6))
 
 
 def read_binary_stl(path):

@@ -50,7 +50,8 @@ void check_tolerance(const FlatLattice& f, double tolerance) {
 // free part of the other stump, else refused. Then the groups: hubs joined by `contacts` or by short beams. Returns
 // per beam whether its strip (or its group) is placed.
 std::vector<char> fit_beams_and_unite(MeshPlan& plan, const std::vector<char>& built, ForeignContacts contacts,
-                                      bool unite_groups, Progress& progress) {
+                                      GroupPolicy policy, Progress& progress) {
+  const bool unite_short = policy == GroupPolicy::All;
   const FlatLattice& f = *plan.lattice;
   const std::vector<BeamFrustum>& frustums = plan.frustums;
   LatticeMeshStats& stats = plan.stats;
@@ -74,11 +75,11 @@ std::vector<char> fit_beams_and_unite(MeshPlan& plan, const std::vector<char>& b
     const BeamCone& cone = frustums[e].cone;
     const double inside_a = 0.5 * (cone.ra * cone.sin_phi + frustums[e].exit_a);
     const double inside_b = 0.5 * (-cone.rb * cone.sin_phi + frustums[e].exit_b);
-    if (!unite_groups || !(length - at_a > inside_b && length - at_b > inside_a))
+    if (!unite_short || !(length - at_a > inside_b && length - at_b > inside_a))
       fail_input("hub", "beam " + std::to_string(e) + " (balls " + std::to_string(f.beams[e].a) + " and " +
                             std::to_string(f.beams[e].b) + ") is too short for the collars of its crowded hubs (" +
                             g(at_a) + " + " + g(at_b) + " of its length " + g(length) +
-                            (unite_groups ? ", reaching past each other into the balls" : "") +
+                            (unite_short ? ", reaching past each other into the balls" : "") +
                             "): thinner beams or smaller balls there");
     short_beam[e] = 1;
     contacts.joined.emplace_back(f.beams[e].a, f.beams[e].b);
@@ -153,15 +154,13 @@ void strip_triangles(const std::vector<Vec3>& va, const std::vector<std::uint32_
 }
 
 MeshPlan plan_lattice_mesh(const FlatLattice& f, const MeshOptions& options, Progress& progress,
-                           const HubsNeeded& needed, bool unite_groups) {
+                           const HubsNeeded& needed, GroupPolicy groups) {
   MeshPlan plan;
   plan.lattice = &f;
   LatticeMeshStats& stats = plan.stats;
   check_tolerance(f, options.tolerance);
   progress.set_total(100);
-  ForeignContacts contacts;  // elements meeting foreign ones, united in groups (or refused)
-  if (unite_groups) contacts = foreign_contacts(f);
-  else require_clean_for_build(f);  // crowded hubs are built; elements meeting foreign ones are not
+  const ForeignContacts contacts = foreign_contacts(f);  // elements meeting foreign ones, united in groups
   progress.advance(5);
   plan.frustums = beam_frustums(f);
   const std::vector<BeamFrustum>& frustums = plan.frustums;
@@ -199,7 +198,8 @@ MeshPlan plan_lattice_mesh(const FlatLattice& f, const MeshOptions& options, Pro
   std::vector<char> built(keys.size(), 1);
   if (needed) {
     const std::vector<char> hubs_needed = needed(plan);
-    std::fill(built.begin(), built.end(), 0);
+    // Where elements meet foreign ones, every template is made: a group needs all its hubs' templates.
+    if (contacts.empty()) std::fill(built.begin(), built.end(), 0);
     for (std::size_t h = 0; h < plan.hubs.size(); ++h)
       if (hubs_needed[h]) built[plan.hubs[h].templ] = 1;
   }
@@ -216,7 +216,7 @@ MeshPlan plan_lattice_mesh(const FlatLattice& f, const MeshOptions& options, Pro
   const auto t0 = std::chrono::steady_clock::now();
   plan.templates.resize(keys.size());
   {
-    Progress part(progress, unite_groups ? 60 : 90, static_cast<std::int64_t>(keys.size()));
+    Progress part(progress, 60, static_cast<std::int64_t>(keys.size()));
     tbb::parallel_for(std::size_t(0), keys.size(), [&](std::size_t t) {
       part.check();
       if (!built[t]) {
@@ -239,7 +239,7 @@ MeshPlan plan_lattice_mesh(const FlatLattice& f, const MeshOptions& options, Pro
   }
   stats.template_seconds = seconds_since(t0);
 
-  const std::vector<char> placed = fit_beams_and_unite(plan, built, contacts, unite_groups, progress);
+  const std::vector<char> placed = fit_beams_and_unite(plan, built, contacts, groups, progress);
 
   // Sizes and offsets (a grouped hub has its place in its group's mesh).
   for (std::size_t k = 0; k < plan.hubs.size(); ++k) {

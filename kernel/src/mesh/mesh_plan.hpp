@@ -56,10 +56,16 @@ using HubsNeeded = std::function<std::vector<char>(const MeshPlan&)>;
 
 // Checks the options and the lattice (InvalidInput naming "tolerance", "lattice" or "hub"), builds the templates:
 // all of them, or with `needed` only those of the hubs it names (the others stay empty, and the strips of beams
-// at such hubs are not counted). Elements meeting foreign ones are united in groups (mesh_groups.hpp) with
-// `unite_groups`, else refused (InvalidInput "lattice", naming them).
+// at such hubs are not counted). The hubs of elements meeting foreign ones, and of beams too short for their
+// collars, are united in groups (mesh_groups.hpp) as `groups` allows, else refused (InvalidInput "lattice" naming
+// the contacts, or "hub" naming the beam).
+enum class GroupPolicy {
+  All,              // a whole lattice
+  ForeignContacts,  // a trimmed one: the band's Boolean, cutting the slivers of a short beam's two tessellations,
+                    // folds once rounded, so short beams are refused there
+};
 MeshPlan plan_lattice_mesh(const FlatLattice& lattice, const MeshOptions& options, Progress& progress,
-                           const HubsNeeded& needed = {}, bool unite_groups = true);
+                           const HubsNeeded& needed = {}, GroupPolicy groups = GroupPolicy::All);
 
 // Index in the whole mesh of vertex v of hub h's template (a loop's vertex when the hub is in a group).
 std::uint64_t mesh_vertex(const MeshPlan& plan, std::size_t h, std::uint32_t v);

@@ -41,13 +41,32 @@ void check_body(const TriangleMesh* m, const char* field) {
 // What closes a loop of a piece where the neighbouring element is not in the piece.
 enum class Cap { None, Dropped, Kept };  // no cap (the piece stays open), a cap the Boolean drops, one it keeps
 
-// A piece of the lattice's mesh: hub patches, strips, and caps closing loops whose other element is elsewhere.
+// A piece of the lattice's mesh: hub patches, united groups, strips, and caps closing loops whose other element is
+// elsewhere.
 struct Piece {
   TriangleMesh mesh;
-  std::vector<std::int64_t> hub_base;  // per hub: index of its first vertex, -1 when not in the piece
-  std::vector<Vec3> cap_centers;       // of caps the Boolean keeps (to remove after it)
+  std::vector<std::int64_t> hub_base;    // per hub: index of its first vertex, -1 when not in the piece
+  std::vector<std::int64_t> group_base;  // per group likewise
+  std::vector<Vec3> cap_centers;         // of caps the Boolean keeps (to remove after it)
 
-  explicit Piece(std::size_t hubs) : hub_base(hubs, -1) {}
+  explicit Piece(const MeshPlan& plan) : hub_base(plan.hubs.size(), -1), group_base(plan.groups.groups.size(), -1) {}
+
+  // Index in the piece of vertex v of hub h's template (a loop's vertex, for a hub in a group), -1 when the hub is
+  // not in the piece.
+  std::int64_t vertex_of(const MeshPlan& plan, std::size_t h, std::uint32_t v) const {
+    const int g = plan.groups.of_hub[h];
+    if (g < 0) return hub_base[h] < 0 ? -1 : hub_base[h] + v;
+    if (group_base[g] < 0) return -1;
+    return group_base[g] + plan.groups.loop_vertex.at(static_cast<std::uint64_t>(h) << 32 | v);
+  }
+
+  void add_group(const MeshPlan& plan, std::size_t g) {
+    const TriangleMesh& m = plan.groups.groups[g].mesh;
+    const auto base = static_cast<std::uint32_t>(mesh.vertices.size());
+    group_base[g] = base;
+    mesh.vertices.insert(mesh.vertices.end(), m.vertices.begin(), m.vertices.end());
+    for (const Triangle& t : m.triangles) mesh.triangles.push_back({base + t[0], base + t[1], base + t[2]});
+  }
 
   void add_hub(const MeshPlan& plan, std::size_t h) {
     const HubTemplate& t = plan.templates[plan.hubs[h].templ];
@@ -77,17 +96,17 @@ struct Piece {
             std::vector<std::uint32_t>& index) {
     const MeshBeamEnd& be = plan.ends[2 * e + end];
     const std::vector<std::uint32_t>& loop = plan.templates[plan.hubs[be.hub].templ].loops[be.slot];
-    const std::int64_t base = hub_base[be.hub];
+    const bool here = vertex_of(plan, be.hub, loop.front()) >= 0;
     for (std::uint32_t v : loop) {
       points.push_back(placed_vertex(plan, be.hub, v));
-      if (base >= 0) {
-        index.push_back(static_cast<std::uint32_t>(base) + v);
+      if (here) {
+        index.push_back(static_cast<std::uint32_t>(vertex_of(plan, be.hub, v)));
       } else {
         index.push_back(static_cast<std::uint32_t>(mesh.vertices.size()));
         mesh.vertices.push_back(points.back());
       }
     }
-    if (base < 0 && cap != Cap::None) add_cap(points, index, true, cap);
+    if (!here && cap != Cap::None) add_cap(points, index, true, cap);
   }
 
   void add_strip(const MeshPlan& plan, std::int64_t e, const std::array<Cap, 2>& caps) {
@@ -107,7 +126,7 @@ struct Piece {
     std::vector<std::uint32_t> index;
     for (std::uint32_t v : loop) {
       points.push_back(placed_vertex(plan, h, v));
-      index.push_back(static_cast<std::uint32_t>(hub_base[h]) + v);
+      index.push_back(static_cast<std::uint32_t>(vertex_of(plan, h, v)));
     }
     add_cap(points, index, false, cap);
   }
@@ -162,16 +181,22 @@ TriangleMesh joined(TriangleMesh inside, const TriangleMesh& band, const Triangl
 // The inside part (elements clear inside the trimming surface) and the band (elements that may cross it, closed
 // by caps where they meet the others).
 std::pair<Piece, Piece> pieces(const MeshPlan& plan, const BandSides& sides) {
-  Piece inside(plan.hubs.size()), band(plan.hubs.size());
+  Piece inside(plan), band(plan);
   for (std::size_t h = 0; h < plan.hubs.size(); ++h) {
+    if (plan.groups.of_hub[h] >= 0) continue;
     if (sides.patches[h] == Side::Inside) inside.add_hub(plan, h);
     else if (sides.patches[h] == Side::Crossing) band.add_hub(plan, h);
+  }
+  for (std::size_t g = 0; g < plan.groups.groups.size(); ++g) {
+    const Side side = sides.patches[plan.groups.groups[g].hubs.front()];  // the group's (group_sides)
+    if (side == Side::Inside) inside.add_group(plan, g);
+    else if (side == Side::Crossing) band.add_group(plan, g);
   }
   // A cap where a band element meets an inside one stays clear of the surface (inside that element's bounding
   // ball), so the Boolean keeps it and it is removed after; a cap at an outside element is dropped by the Boolean.
   const auto cap_at = [](Side other) { return other == Side::Inside ? Cap::Kept : Cap::Dropped; };
   for (std::int64_t e = 0; e < static_cast<std::int64_t>(sides.strips.size()); ++e) {
-    if (!plan.frustums[e].exists) continue;
+    if (!plan.frustums[e].exists || plan.groups.inner[e]) continue;  // an inner beam is in its group's mesh
     const Side a = sides.patches[plan.ends[2 * e].hub], b = sides.patches[plan.ends[2 * e + 1].hub];
     if (sides.strips[e] == Side::Inside) inside.add_strip(plan, e, {Cap::None, Cap::None});
     else if (sides.strips[e] == Side::Crossing) band.add_strip(plan, e, {cap_at(a), cap_at(b)});
@@ -179,9 +204,27 @@ std::pair<Piece, Piece> pieces(const MeshPlan& plan, const BandSides& sides) {
   for (std::size_t h = 0; h < plan.hubs.size(); ++h) {
     if (sides.patches[h] != Side::Crossing) continue;
     for (const auto& [e, end] : plan.hubs[h].stumps)
-      if (sides.strips[e] != Side::Crossing) band.cap_hub_loop(plan, h, e, end, cap_at(sides.strips[e]));
+      if (!plan.groups.inner[e] && sides.strips[e] != Side::Crossing)
+        band.cap_hub_loop(plan, h, e, end, cap_at(sides.strips[e]));
   }
   return {std::move(inside), std::move(band)};
+}
+
+// A group is one piece: Inside or Outside when all its hubs' patches and inner beams' strips are, else Crossing;
+// each of its hubs then takes the group's side (which the strips leaving it and their caps go by).
+void group_sides(const MeshPlan& plan, BandSides& sides) {
+  const MeshGroups& groups = plan.groups;
+  std::vector<std::vector<Side>> seen(groups.groups.size());
+  for (std::size_t g = 0; g < groups.groups.size(); ++g)
+    for (std::size_t h : groups.groups[g].hubs) seen[g].push_back(sides.patches[h]);
+  for (std::size_t e = 0; e < sides.strips.size(); ++e)
+    if (groups.inner[e]) seen[groups.of_hub[plan.ends[2 * e].hub]].push_back(sides.strips[e]);
+  for (std::size_t g = 0; g < groups.groups.size(); ++g) {
+    const bool all_inside = std::all_of(seen[g].begin(), seen[g].end(), [](Side s) { return s == Side::Inside; });
+    const bool all_outside = std::all_of(seen[g].begin(), seen[g].end(), [](Side s) { return s == Side::Outside; });
+    const Side side = all_inside ? Side::Inside : all_outside ? Side::Outside : Side::Crossing;
+    for (std::size_t h : groups.groups[g].hubs) sides.patches[h] = side;
+  }
 }
 
 // Moves the band's vertices that graze the surface clear of it, by a gap of 16 floats' resolution at the band's
@@ -226,11 +269,12 @@ TriangleMesh trimmed_lattice_mesh(const FlatLattice& f, const MeshOptions& optio
           hubs = surface.hubs(p);
           return hubs_needed(p, hubs);
         },
-        false);  // elements meeting foreign ones are not trimmed yet (docs/mesh.md)
+        GroupPolicy::ForeignContacts);
   }
   stats.plan_seconds = seconds_since(clock);
   clock = std::chrono::steady_clock::now();
-  const BandSides sides = surface.elements(plan, hubs);
+  BandSides sides = surface.elements(plan, hubs);
+  group_sides(plan, sides);
   stats.inside_hubs = sides.inside_hubs, stats.crossing_hubs = sides.crossing_hubs, stats.outside_hubs = sides.outside_hubs;
   stats.classify_seconds = seconds_since(clock);
   progress.advance(10);
