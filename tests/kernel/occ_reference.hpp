@@ -17,6 +17,7 @@
 #include <optional>
 #include <vector>
 
+#include "steady/lattice/flat_lattice.hpp"
 #include "steady/properties/hub_properties.hpp"
 #include "test_support.hpp"
 
@@ -86,6 +87,15 @@ inline TopoDS_Shape occ_beam(const Vec3& a, double ra, const Vec3& b, double rb)
   const gp_Ax2 axes(occ_point(a + x0 * axis), gp_Dir(axis.x, axis.y, axis.z));
   if (std::abs(ra - rb) < 1e-12 * ra) return BRepPrimAPI_MakeCylinder(axes, ra, x1 - x0).Shape();
   return BRepPrimAPI_MakeCone(axes, ra * cos_phi, rb * cos_phi, x1 - x0).Shape();
+}
+
+// Every ball and beam of a listing fused by OpenCASCADE: the slow, obviously right twin of the builders' groups.
+inline std::optional<TopoDS_Shape> occ_lattice_union(const FlatLattice& f) {
+  std::vector<TopoDS_Shape> pieces;
+  for (const Ball& ball : f.balls) pieces.push_back(BRepPrimAPI_MakeSphere(occ_point(ball.center), ball.radius).Shape());
+  for (const FlatBeam& beam : f.beams)
+    pieces.push_back(occ_beam(f.balls[beam.a].center, beam.ra, f.balls[beam.b].center, beam.rb));
+  return occ_fuse(pieces);
 }
 
 inline std::optional<TopoDS_Shape> occ_hub(const HubShape& h) {

@@ -193,11 +193,7 @@ TEST(BrepBuilder, ForeignContactsOfEveryKindMatchABruteForceFuse) {
        {{-3, 0, 0}, 0.3}, {{-3, 3, 0}, 0.3}},                                                // a clean beam
       {{0, 1, 0.15, 0.15}, {2, 3, 0.12, 0.18}, {1, 5, 0.15, 0.15}, {6, 7, 0.15, 0.15}, {8, 9, 0.12, 0.12},
        {0, 8, 0.15, 0.12}});
-  std::vector<TopoDS_Shape> pieces;
-  for (const Ball& ball : f.balls) pieces.push_back(BRepPrimAPI_MakeSphere(test::occ_point(ball.center), ball.radius).Shape());
-  for (const FlatBeam& beam : f.beams)
-    pieces.push_back(test::occ_beam(f.balls[beam.a].center, beam.ra, f.balls[beam.b].center, beam.rb));
-  const std::optional<TopoDS_Shape> brute = test::occ_fuse(pieces);
+  const std::optional<TopoDS_Shape> brute = test::occ_lattice_union(f);
   ASSERT_TRUE(brute.has_value());
   const double reference = test::occ_properties(*brute).volume;
   const LatticeBrep b = build_lattice_brep(f);

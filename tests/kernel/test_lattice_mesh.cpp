@@ -73,6 +73,33 @@ std::int64_t lattice_components(const FlatLattice& f) {
   return n;
 }
 
+// How deep a point lies in the exact union of a listing's balls and beams (a beam is its cone between the two
+// tangent circles): the largest over the elements; outside the union, minus its distance to it.
+class UnionDepth {
+ public:
+  explicit UnionDepth(const FlatLattice& f) : f_(f) {
+    for (const FlatBeam& e : f.beams) {
+      const BeamCone cone = beam_cone({f.balls[e.a].center, e.ra}, {f.balls[e.b].center, e.rb});
+      if (cone.has_lateral_surface()) cones_.push_back(cone);
+    }
+  }
+  double operator()(const Vec3& p) const {
+    double d = -1e300;
+    for (const Ball& b : f_.balls) d = std::max(d, b.radius - glm::length(p - b.center));
+    for (const BeamCone& cone : cones_) {
+      const Vec3 w = p - cone.a;
+      const double x = glm::dot(w, cone.axis), r = glm::length(w - x * cone.axis);
+      if (x >= cone.ra * cone.sin_phi - 1e-9 && x <= cone.length + cone.rb * cone.sin_phi + 1e-9)
+        d = std::max(d, (cone.radius_at(x) - r) * cone.cos_phi);
+    }
+    return d;
+  }
+
+ private:
+  const FlatLattice& f_;
+  std::vector<BeamCone> cones_;
+};
+
 struct Case {
   std::string name;
   Lattice lattice;
@@ -102,22 +129,7 @@ void expect_valid_mesh(const Case& c) {
   // (the largest over the elements of how deep the point lies in it; a beam is its cone between the two tangent
   // circles) is zero at the vertices and at most the tolerance at each triangle's centroid and edge midpoints.
   const FlatLattice f = flatten(c.lattice);
-  std::vector<BeamCone> cones;
-  for (const FlatBeam& e : f.beams) {
-    const BeamCone cone = beam_cone({f.balls[e.a].center, e.ra}, {f.balls[e.b].center, e.rb});
-    if (cone.has_lateral_surface()) cones.push_back(cone);
-  }
-  auto depth = [&](const Vec3& p) {
-    double d = -1e300;
-    for (const Ball& b : f.balls) d = std::max(d, b.radius - glm::length(p - b.center));
-    for (const BeamCone& cone : cones) {
-      const Vec3 w = p - cone.a;
-      const double x = glm::dot(w, cone.axis), r = glm::length(w - x * cone.axis);
-      if (x >= cone.ra * cone.sin_phi - 1e-9 && x <= cone.length + cone.rb * cone.sin_phi + 1e-9)
-        d = std::max(d, (cone.radius_at(x) - r) * cone.cos_phi);
-    }
-    return d;
-  };
+  const UnionDepth depth(f);
   // Outside the union (depth < 0), -depth is the distance to it: a chord across a concave crease (a cone meeting
   // the sphere or another cone) lies there.
   double off_surface = 0.0, chord = 0.0, outside = 0.0;
@@ -212,11 +224,7 @@ TEST(LatticeMesh, DumbbellLoneBallCylinderAndAbsorbedBall) {
 void expect_united_mesh(const FlatLattice& f, double tolerance, std::int64_t groups, std::int64_t grouped_hubs,
                         std::size_t components, const std::string& name) {
   SCOPED_TRACE(name);
-  std::vector<TopoDS_Shape> pieces;
-  for (const Ball& ball : f.balls) pieces.push_back(BRepPrimAPI_MakeSphere(test::occ_point(ball.center), ball.radius).Shape());
-  for (const FlatBeam& beam : f.beams)
-    pieces.push_back(test::occ_beam(f.balls[beam.a].center, beam.ra, f.balls[beam.b].center, beam.rb));
-  const std::optional<TopoDS_Shape> brute = test::occ_fuse(pieces);
+  const std::optional<TopoDS_Shape> brute = test::occ_lattice_union(f);
   ASSERT_TRUE(brute.has_value());
   const double exact = test::occ_properties(*brute).volume;
   LatticeMeshStats stats;
@@ -235,21 +243,10 @@ void expect_united_mesh(const FlatLattice& f, double tolerance, std::int64_t gro
   // Depth in the exact union (the largest over elements of how deep a point lies in it): the Boolean's new
   // vertices lie on two triangles, each within the tolerance of the surface (inside, or outside where a chord
   // spans a concave crease), so within the tolerance of it.
-  std::vector<BeamCone> cones;
-  for (const FlatBeam& e : f.beams) {
-    const BeamCone cone = beam_cone({f.balls[e.a].center, e.ra}, {f.balls[e.b].center, e.rb});
-    if (cone.has_lateral_surface()) cones.push_back(cone);
-  }
+  const UnionDepth depth(f);
   double deepest = 0.0, outside = 0.0;
   for (const Vec3& p : mesh.vertices) {
-    double d = -1e300;
-    for (const Ball& b : f.balls) d = std::max(d, b.radius - glm::length(p - b.center));
-    for (const BeamCone& cone : cones) {
-      const Vec3 w = p - cone.a;
-      const double x = glm::dot(w, cone.axis), r = glm::length(w - x * cone.axis);
-      if (x >= cone.ra * cone.sin_phi - 1e-9 && x <= cone.length + cone.rb * cone.sin_phi + 1e-9)
-        d = std::max(d, (cone.radius_at(x) - r) * cone.cos_phi);
-    }
+    const double d = depth(p);
     deepest = std::max(deepest, d);
     outside = std::max(outside, -d);
   }
