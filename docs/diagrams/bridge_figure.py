@@ -11,15 +11,12 @@ import os
 import sys
 import time
 
-ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
-sys.path.insert(0, os.path.join(ROOT, "build", "python"))
-sys.path.insert(0, os.path.join(ROOT, "Mod", "LatticeWorkbench"))
-# this checkout's workbench and module, not an installed copy FreeCAD loaded at start
-for _name in [n for n in sys.modules if n.split(".")[0] in ("latticewb", "steadylattice")]:
-    del sys.modules[_name]
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from freecad_figure import ROOT, save_view, use_checkout  # noqa: E402
+
+use_checkout("Mod/LatticeWorkbench")
 
 import FreeCAD  # noqa: E402
-import FreeCADGui  # noqa: E402
 import Part  # noqa: E402
 
 import steadylattice as sl  # noqa: E402
@@ -71,14 +68,7 @@ def main():
         bridges.ViewObject.ShapeColor = (0.85, 0.10, 0.10)
         body.ViewObject.ShapeColor = (0.55, 0.65, 0.80)
         body.ViewObject.Transparency = 85
-        view = FreeCADGui.activeDocument().activeView()
-        view.viewIsometric()
-        view.fitAll()
-        FreeCADGui.updateGui()
-        view.saveImage(OUT, 1200, 900, "White")
-        from PIL import Image  # a palette PNG: a third of the bytes, no visible change
-        Image.open(OUT).convert("RGB").quantize(colors=128).save(OUT, optimize=True)
-        print(OUT)
+        save_view(OUT)
     FreeCAD.closeDocument(doc.Name)
 
 

@@ -8,14 +8,12 @@ import os
 import sys
 import time
 
-ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
-sys.path.insert(0, os.path.join(ROOT, "build", "python"))
-sys.path.insert(0, os.path.join(ROOT, "tests", "python"))
-for _name in [n for n in sys.modules if n.split(".")[0] in ("latticewb", "steadylattice")]:
-    del sys.modules[_name]
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from freecad_figure import ROOT, save_view, use_checkout  # noqa: E402
+
+use_checkout("tests/python")
 
 import FreeCAD  # noqa: E402
-import FreeCADGui  # noqa: E402
 import Mesh  # noqa: E402
 
 import steadylattice as sl  # noqa: E402
@@ -42,14 +40,7 @@ def main():
     doc.recompute()
     if FreeCAD.GuiUp:
         feature.ViewObject.ShapeColor = (0.85, 0.55, 0.20)
-        view = FreeCADGui.activeDocument().activeView()
-        view.viewIsometric()
-        view.fitAll()
-        FreeCADGui.updateGui()
-        view.saveImage(OUT, 1200, 900, "White")
-        from PIL import Image  # a palette PNG: a third of the bytes, no visible change
-        Image.open(OUT).convert("RGB").quantize(colors=128).save(OUT, optimize=True)
-        print(OUT)
+        save_view(OUT)
     FreeCAD.closeDocument(doc.Name)
 
 
