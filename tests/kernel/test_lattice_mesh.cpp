@@ -280,6 +280,22 @@ TEST(LatticeMesh, ElementsMeetingForeignOnesAreUnitedInGroups) {
   expect_united_mesh(crossing, 0.002, 1, 4, 1, "crossing beams");
 }
 
+// More hubs in one group than the mesh unites: refused before any Boolean, naming the contacts and what helps.
+TEST(LatticeMesh, GroupsOverTooManyHubsAreRefusedWithTheContacts) {
+  std::vector<Ball> balls;
+  for (int i = 0; i < 300; ++i) balls.push_back({{0.5 * i, 0, 0}, 0.3});  // each overlaps the next: one group
+  const FlatLattice f = make_flat_lattice(balls, {});
+  try {
+    lattice_mesh(f, {0.01});
+    FAIL() << "a group of 300 hubs was accepted";
+  } catch (const InvalidInput& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("300 hubs are joined in one group"), std::string::npos) << what;
+    EXPECT_NE(what.find("balls 0 and 1 meet"), std::string::npos) << what;
+    EXPECT_NE(what.find("space the nodes further apart"), std::string::npos) << what;
+  }
+}
+
 TEST(LatticeMesh, BadToleranceNamesTheParameter) {
   const Lattice lat = preset_lattice("cubic", {1, 1, 1}, 2.0, 0.25, 0.1);
   for (double t : {0.0, -1.0, std::nan(""), 0.1}) {
