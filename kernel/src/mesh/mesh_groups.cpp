@@ -9,6 +9,7 @@
 #include "core/disjoint_sets.hpp"
 #include "mesh/cgal_mesh.hpp"
 #include "mesh/float_safe.hpp"
+#include "mesh/loop_fan.hpp"
 #include "mesh/mesh_plan.hpp"
 #include "mesh/vertex_key.hpp"
 #include "query/foreign_contacts.hpp"
@@ -21,24 +22,12 @@ namespace {
 namespace PMP = CGAL::Polygon_mesh_processing;
 
 // One closed operand of a group's union: a hub with the strips of the inner beams it owns (those whose end a it
-// is), capped on every other loop.
+// is), capped on every other loop by fans (loop_fan.hpp; facing along the loop's axis, `reversed`: against it).
 struct Member {
   TriangleMesh mesh;
   std::vector<Vec3> kept;  // centers of the caps on leaving loops
 
-  // A fan around the loop's centroid, facing along the loop's axis (`reversed`: against it). Returns the centroid.
-  Vec3 cap(const std::vector<std::uint32_t>& index, bool reversed) {
-    Vec3 centroid(0.0);
-    for (std::uint32_t i : index) centroid += mesh.vertices[i];
-    centroid /= static_cast<double>(index.size());
-    const auto c = static_cast<std::uint32_t>(mesh.vertices.size());
-    mesh.vertices.push_back(centroid);
-    for (std::size_t i = 0; i < index.size(); ++i) {
-      const std::uint32_t a = index[i], b = index[(i + 1) % index.size()];
-      mesh.triangles.push_back(reversed ? Triangle{c, b, a} : Triangle{c, a, b});
-    }
-    return centroid;
-  }
+  Vec3 cap(const std::vector<std::uint32_t>& index, bool reversed) { return append_fan(mesh, index, reversed); }
 };
 
 Member hub_member(const MeshPlan& plan, const MeshGroups& groups, const std::vector<char>& short_beam, std::size_t h) {

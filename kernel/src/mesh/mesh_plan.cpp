@@ -88,7 +88,7 @@ std::vector<char> fit_beams_and_unite(MeshPlan& plan, const std::vector<char>& b
                     std::to_string(f.beams[e].b) + ": " + g(at_a) + " + " + g(at_b) + " of its length " +
                     g(length) + ")";
   }
-  if (!contacts.joined.empty()) {
+  {
     const auto t1 = std::chrono::steady_clock::now();
     Progress part(progress, 30);
     try {
@@ -103,9 +103,6 @@ std::vector<char> fit_beams_and_unite(MeshPlan& plan, const std::vector<char>& b
     stats.foreign_groups = static_cast<std::int64_t>(plan.groups.groups.size());
     for (const MeshGroup& group : plan.groups.groups) stats.foreign_hubs += static_cast<std::int64_t>(group.hubs.size());
     stats.group_seconds = seconds_since(t1);
-  } else {
-    plan.groups.of_hub.assign(plan.hubs.size(), -1);
-    plan.groups.inner.assign(f.beam_count(), 0);
   }
   return placed;
 }

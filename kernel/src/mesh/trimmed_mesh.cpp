@@ -14,6 +14,7 @@
 #include "mesh/band_sides.hpp"
 #include "mesh/cgal_mesh.hpp"
 #include "mesh/float_safe.hpp"
+#include "mesh/loop_fan.hpp"
 #include "mesh/mesh_plan.hpp"
 #include "mesh/vertex_key.hpp"
 #include "steady/core/errors.hpp"
@@ -76,18 +77,10 @@ struct Piece {
     for (const Triangle& tri : t.triangles) mesh.triangles.push_back({base + tri[0], base + tri[1], base + tri[2]});
   }
 
-  // A fan around the loop's centroid; `reversed`: wound against the loop's order.
-  void add_cap(const std::vector<Vec3>& points, const std::vector<std::uint32_t>& index, bool reversed, Cap cap) {
-    Vec3 centroid(0.0);
-    for (const Vec3& p : points) centroid += p;
-    centroid /= static_cast<double>(points.size());
-    const auto c = static_cast<std::uint32_t>(mesh.vertices.size());
-    mesh.vertices.push_back(centroid);
-    for (std::size_t i = 0; i < index.size(); ++i) {
-      const std::uint32_t a = index[i], b = index[(i + 1) % index.size()];
-      mesh.triangles.push_back(reversed ? Triangle{c, b, a} : Triangle{c, a, b});
-    }
-    if (cap == Cap::Kept) cap_centers.push_back(centroid);
+  // A fan on the loop (loop_fan.hpp); `reversed`: wound against the loop's order.
+  void add_cap(const std::vector<std::uint32_t>& index, bool reversed, Cap cap) {
+    const Vec3 center = append_fan(mesh, index, reversed);
+    if (cap == Cap::Kept) cap_centers.push_back(center);
   }
 
   // The loop of beam e's end (0: a, 1: b) as points and indices: the hub's own vertices when it is in the piece,
@@ -106,7 +99,7 @@ struct Piece {
         mesh.vertices.push_back(points.back());
       }
     }
-    if (!here && cap != Cap::None) add_cap(points, index, true, cap);
+    if (!here && cap != Cap::None) add_cap(index, true, cap);
   }
 
   void add_strip(const MeshPlan& plan, std::int64_t e, const std::array<Cap, 2>& caps) {
@@ -122,13 +115,9 @@ struct Piece {
   // Closes the hole of hub h (in the piece) where beam e's strip is not, facing away from the hub.
   void cap_hub_loop(const MeshPlan& plan, std::size_t h, std::int64_t e, int end, Cap cap) {
     const std::vector<std::uint32_t>& loop = plan.templates[plan.hubs[h].templ].loops[plan.ends[2 * e + end].slot];
-    std::vector<Vec3> points;
     std::vector<std::uint32_t> index;
-    for (std::uint32_t v : loop) {
-      points.push_back(placed_vertex(plan, h, v));
-      index.push_back(static_cast<std::uint32_t>(vertex_of(plan, h, v)));
-    }
-    add_cap(points, index, false, cap);
+    for (std::uint32_t v : loop) index.push_back(static_cast<std::uint32_t>(vertex_of(plan, h, v)));
+    add_cap(index, false, cap);
   }
 };
 
@@ -214,16 +203,18 @@ std::pair<Piece, Piece> pieces(const MeshPlan& plan, const BandSides& sides) {
 // each of its hubs then takes the group's side (which the strips leaving it and their caps go by).
 void group_sides(const MeshPlan& plan, BandSides& sides) {
   const MeshGroups& groups = plan.groups;
-  std::vector<std::vector<Side>> seen(groups.groups.size());
-  for (std::size_t g = 0; g < groups.groups.size(); ++g)
-    for (std::size_t h : groups.groups[g].hubs) seen[g].push_back(sides.patches[h]);
+  std::vector<char> not_inside(groups.groups.size(), 0), not_outside(groups.groups.size(), 0);
+  auto see = [&](int g, Side s) {
+    not_inside[g] |= s != Side::Inside;
+    not_outside[g] |= s != Side::Outside;
+  };
+  for (std::size_t h = 0; h < plan.hubs.size(); ++h)
+    if (groups.of_hub[h] >= 0) see(groups.of_hub[h], sides.patches[h]);
   for (std::size_t e = 0; e < sides.strips.size(); ++e)
-    if (groups.inner[e]) seen[groups.of_hub[plan.ends[2 * e].hub]].push_back(sides.strips[e]);
-  for (std::size_t g = 0; g < groups.groups.size(); ++g) {
-    const bool all_inside = std::all_of(seen[g].begin(), seen[g].end(), [](Side s) { return s == Side::Inside; });
-    const bool all_outside = std::all_of(seen[g].begin(), seen[g].end(), [](Side s) { return s == Side::Outside; });
-    const Side side = all_inside ? Side::Inside : all_outside ? Side::Outside : Side::Crossing;
-    for (std::size_t h : groups.groups[g].hubs) sides.patches[h] = side;
+    if (groups.inner[e]) see(groups.of_hub[plan.ends[2 * e].hub], sides.strips[e]);
+  for (std::size_t h = 0; h < plan.hubs.size(); ++h) {
+    const int g = groups.of_hub[h];
+    if (g >= 0) sides.patches[h] = !not_inside[g] ? Side::Inside : !not_outside[g] ? Side::Outside : Side::Crossing;
   }
 }
 
