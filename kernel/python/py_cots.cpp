@@ -236,6 +236,8 @@ raised(z) / projected(), bent(beta) / unbent().)doc")
       .def_property_readonly("corners",
                              [](const BecotsMap& b) { return corner_array<Vec3, 3>(b.a(), b.b(), b.c(), b.d()); })
       .def_property_readonly("axis", [](const BecotsMap& b) { return vec3_array(b.axis()); })
+      .def_property_readonly("normal", [](const BecotsMap& b) { return vec3_array(b.normal()); },
+                             "The unit normal of the range at A (dM/dx x dM/dy, normalized): layer_offset's direction.")
       .def_property_readonly("apex",
                              [](const BecotsMap& b) -> py::object {
                                const auto f = b.apex();
@@ -358,22 +360,25 @@ void bind_becots_lattice(py::module_& m) {
   m.def(
       "becots_lattice",
       [](const BecotsMap& map, py::handle connectivity, py::handle counts, double radius, double layer_raise,
-         double beam_ratio) {
+         double beam_ratio, double layer_offset) {
         return steady::becots_lattice(map, to_connectivity(connectivity), to_counts(counts), radius, layer_raise,
-                                      beam_ratio);
+                                      beam_ratio, layer_offset);
       },
       py::arg("map"), py::arg("connectivity"), py::arg("counts"), py::arg("radius"), py::arg("layer_raise") = 0.0,
-      py::arg("beam_ratio") = 0.0,
-      "A Lattice laid on the map's nu x nv tiles (counts (nu, nv, layers)), its layers raised by layer_raise along "
-      "the axis; node radii `radius` scaled with the map; beams the hull of their balls, or beam_ratio times their "
-      "nodes' radii. An ordinary steady brick: every query, property and output applies.");
+      py::arg("beam_ratio") = 0.0, py::arg("layer_offset") = 0.0,
+      "A Lattice laid on the map's nu x nv tiles (counts (nu, nv, layers)), each layer's corner A (and its template) "
+      "moved from the last by layer_raise along the axis plus layer_offset along the range's normal at A "
+      "(BecotsMap.normal()); node radii `radius` scaled with the map; beams the hull of their balls, or beam_ratio "
+      "times their nodes' radii. An ordinary steady brick: every query, property and output applies.");
 }
 
 void bind_becots_lattice_query(py::module_& m) {
   // Holds the lattice (keep_alive) because the query refers to it.
   py::class_<steady::BecotsLatticeQuery>(m, "BecotsLatticeQuery", R"doc(
-Ball queries on a BeCOTS lattice (made by becots_lattice on `map`) through the map-level BeCOTS RangeFinder: per
-layer, in time independent of the counts.)doc")
+Ball queries on a BeCOTS lattice (made by becots_lattice on `map`) through the map-level BeCOTS RangeFinder, in
+time independent of the counts: only the layers of a stack whose shell of cones meets the query are searched.
+Lattice.query_ball and the other queries take this path by themselves (method 'becots', auto's choice) when the
+lattice is laid on a BeCOTS map.)doc")
       .def(py::init<const steady::Lattice&, const BecotsMap&>(), py::arg("lattice"), py::arg("map"),
            py::keep_alive<1, 2>())
       .def(
@@ -397,7 +402,15 @@ layer, in time independent of the counts.)doc")
           [](const steady::BecotsLatticeQuery& q, py::handle center, double radius) {
             return q.candidate_groups({to_vec3(center, "center"), radius});
           },
-          py::arg("center"), py::arg("radius"));
+          py::arg("center"), py::arg("radius"))
+      .def(
+          "candidate_layers",
+          [](const steady::BecotsLatticeQuery& q, py::handle center, double radius) {
+            return q.candidate_layers({to_vec3(center, "center"), radius});
+          },
+          py::arg("center"), py::arg("radius"),
+          "The layers whose shell of cones about the apex meets the ball: the only ones a query searches.")
+      .def_property_readonly("layer_count", &steady::BecotsLatticeQuery::layer_count);
 }
 
 void bind_cots(py::module_& m) {

@@ -182,7 +182,7 @@ void bind_lattice_queries(py::module_& m) {
           py::arg("center"), py::arg("radius"), py::arg("method") = "auto",
           "(ball_indices, beam_indices): sorted int64 indices into balls() and beams() of exactly the elements "
           "meeting the closed ball (touching counts). A beam is the convex hull of its two end balls. method: "
-          "auto, naive, rows, slabs, constant, blocks, rows-paper, slabs-paper.")
+          "auto, naive, rows, slabs, constant, blocks, rows-paper, slabs-paper, becots (a BeCOTS slab or stack).")
       .def(
           "contains",
           [](const py::object& self, py::handle points, const std::string& method) {
@@ -229,10 +229,13 @@ void bind_lattice_queries(py::module_& m) {
             d["slabs_reason"] = p.slabs_reason;
             d["constant"] = p.constant_valid;
             d["constant_reason"] = p.constant_reason;
+            d["becots"] = p.becots_valid;
+            d["becots_reason"] = p.becots_reason;
             d["description"] = p.describe();
             return d;
           },
-          "Which ball-interference paths apply to this lattice (O(u) slabs, O(1) constant) and why not.")
+          "Which ball-interference paths apply to this lattice (O(u) slabs, O(1) constant, O(1) becots on a BeCOTS "
+          "slab or stack) and why not.")
       .def(
           "filtered",
           [](const Lattice& self, const PyFilter& f, const std::string& method) {

@@ -89,6 +89,9 @@ TEST(BecotsLattice, QueriesMatchBruteForceOnSlabsAndStacks) {
       std::vector<QueryMethod> methods = {QueryMethod::Auto, QueryMethod::Naive, QueryMethod::Rows, QueryMethod::Blocks};
       if (lq.plan().slabs_valid) methods.push_back(QueryMethod::Slabs);
       if (lq.plan().constant_valid) methods.push_back(QueryMethod::Constant);
+      EXPECT_TRUE(lq.plan().becots_valid) << lq.plan().becots_reason;
+      EXPECT_EQ(lq.plan().automatic, QueryMethod::Becots);
+      methods.push_back(QueryMethod::Becots);
       for (int q = 0; q < 120; ++q) {
         const Ball e = lattice.ball(lattice.ball_id(static_cast<std::int64_t>(u01(rng) * lattice.ball_count())));
         const Ball query{e.center + Vec3(unit(rng), unit(rng), unit(rng)) * (4.0 * e.radius), 3.0 * e.radius * u01(rng)};
@@ -147,6 +150,123 @@ TEST(BecotsLattice, TheMapLevelRangeFinderQueryEqualsNaive) {
   // Another map's lattice is refused.
   const Lattice other = becots_lattice(cone(), becots_connectivity("triangle"), {4, 4, 1}, 0.01);
   EXPECT_THROW(BecotsLatticeQuery(other, sheet.bent(0.6)), InvalidInput);
+}
+
+TEST(BecotsLattice, NormalOffsetLayersMoveCornerAAlongTheNormal) {
+  // 6.3 (b): every layer shares the field, its corner A moved by k d along the range's normal at A. The normal is
+  // orthogonal to both derivatives of the map at (0, 0) (difference quotients) and lies in the plane of A and the axis.
+  const BecotsMap map = cone();
+  const Vec3 n = map.normal(), a = map.a(), axis = map.axis(), apex = *map.apex();
+  const double h = 1e-6;
+  const Vec3 dx = (map.map(h, 0.0) - map.map(-h, 0.0)) / (2.0 * h), dy = (map.map(0.0, h) - map.map(0.0, -h)) / (2.0 * h);
+  EXPECT_NEAR(glm::length(n), 1.0, 1e-15);
+  EXPECT_LT(std::abs(glm::dot(n, glm::normalize(dx))), 1e-9);
+  EXPECT_LT(std::abs(glm::dot(n, glm::normalize(dy))), 1e-9);
+  EXPECT_GT(glm::dot(n, glm::cross(dx, dy)), 0.0);
+  EXPECT_LT(std::abs(glm::dot(n, glm::normalize(glm::cross(axis, a - apex)))), 1e-12);
+  const BecotsConnectivity cells = becots_connectivity("triangle");
+  const Counts counts{7, 5, 4};
+  const double offset = 0.03;
+  const Lattice lattice = becots_lattice(map, cells, counts, 0.01, 0.0, 0.5, offset);
+  double worst = 0.0;
+  for (std::int64_t k = 0; k < counts.w; ++k) {
+    // Layer k is the BeCOTS map of the same field through A + k d N.
+    const BecotsMap layer = BecotsMap::from_field(apex, axis, a + static_cast<double>(k) * offset * n, map.log_u(),
+                                                  map.log_v());
+    for (std::int64_t j = 0; j < counts.v; ++j)
+      for (std::int64_t i = 0; i < counts.u; ++i)
+        worst = std::max(worst, glm::length(lattice.ball({i, j, k, 0}).center -
+                                            layer.map(static_cast<double>(i) / counts.u,
+                                                      static_cast<double>(j) / counts.v)));
+  }
+  EXPECT_LT(worst, 1e-12);
+  EXPECT_THROW(becots_lattice(map, cells, counts, 0.01, 0.0, 0.5, NAN), InvalidInput);
+}
+
+TEST(BecotsLattice, StackQueriesSearchOnlyTheLayersNearTheQuery) {
+  // The dissertation's O(1) stack query: only the layers whose shell of cones meets the query's are searched, for
+  // raised and for normal-offset stacks, and the answers equal brute force. LatticeQuery takes this path on its
+  // own.
+  std::mt19937_64 rng(47);
+  std::uniform_real_distribution<double> u01(0.0, 1.0), unit(-1.0, 1.0);
+  BecotsConnectivity cells = becots_connectivity("kagome");
+  for (int n = 0; n < 3; ++n) {
+    BeamPattern b;
+    b.from = n, b.dk = 1, b.to = n;
+    cells.beams.push_back(b);
+  }
+  const BecotsMap bent = BecotsMap({0, 0, 0}, {0.1, 1, 0}, {1.3, 1.2, 0}, {1, 0, 0}).bent(0.6);
+  struct Case {
+    BecotsMap map;
+    double raise, offset;
+  };
+  long queries = 0, layers_searched = 0, point_queries = 0;
+  std::map<std::int64_t, long> most_layers;  // by the number of layers: the most a point query searched
+  for (const std::int64_t layers : {10, 40})
+    for (const Case& c : {Case{cone(), 0.02, 0.0}, Case{cone(), 0.0, 0.02}, Case{bent, 0.0, -0.015},
+                          Case{bent, 0.01, 0.01}}) {
+      const Counts counts{10, 8, layers};
+      const Lattice lattice = becots_lattice(c.map, cells, counts, 0.004, c.raise, 0.6, c.offset);
+      const BecotsLatticeQuery fast(lattice, c.map);
+      const LatticeQuery lq(lattice);
+      ASSERT_TRUE(lq.plan().becots_valid) << lq.plan().becots_reason;
+      const test::BruteForceQuery truth(lattice);
+      for (int q = 0; q < 100; ++q) {
+        const Ball e = lattice.ball(lattice.ball_id(static_cast<std::int64_t>(u01(rng) * lattice.ball_count())));
+        const bool point = q % 2 == 0;
+        const Ball query{e.center + Vec3(unit(rng), unit(rng), unit(rng)) * (2.0 * e.radius),
+                         point ? 0.0 : 2.0 * e.radius * u01(rng)};
+        const BallQueryResult expected = truth(query);
+        for (const BallQueryResult& got : {fast.query_ball(query), lq.query_ball(query)}) {
+          EXPECT_EQ(got.balls, expected.balls);
+          EXPECT_EQ(got.beams, expected.beams);
+        }
+        const long searched = static_cast<long>(fast.candidate_layers(query).size());
+        ++queries;
+        layers_searched += searched;
+        if (point) {
+          ++point_queries;
+          most_layers[layers] = std::max(most_layers[layers], searched);
+        }
+      }
+    }
+  // A layer's elements reach the next layer's (the joining beams), and a raised layer is not on one cone (its
+  // template moves rigidly), so a point sees a handful of layers, about as many in a stack of 40 as in one of 10
+  // (other queries, and the table's buckets fall elsewhere: one more is allowed).
+  EXPECT_LE(most_layers[40], most_layers[10] + 1);
+  EXPECT_LE(most_layers[40], 8);
+  std::printf("[ measured ] BeCOTS stacks of 10 and 40 layers: %ld queries equal to brute force; %.2f layers "
+              "searched per query on average; a point query searched at most %ld of 10 layers, %ld of 40\n",
+              queries, static_cast<double>(layers_searched) / queries, most_layers[10], most_layers[40]);
+}
+
+TEST(BecotsLattice, LatticeQueryFindsTheMapOrSaysWhyNot) {
+  // The BeCOTS path needs the map: found from the steps of any lattice laid on one (however made), refused with
+  // a reason otherwise.
+  const BecotsMap map = cone();
+  const Lattice laid = becots_lattice(map, becots_connectivity("honeycomb"), {5, 4, 1}, 0.01);
+  const Lattice by_hand = Lattice::incremental(laid.definition().nodes, laid.definition().beams, {5, 4, 1},
+                                               map.field(0.2, 0.0), map.field(0.0, 0.25), Similarity::identity());
+  for (const Lattice* l : {&laid, &by_hand}) {
+    const LatticeQuery lq(*l);
+    EXPECT_TRUE(lq.plan().becots_valid) << lq.plan().becots_reason;
+    EXPECT_EQ(lq.plan().automatic, QueryMethod::Becots);
+    EXPECT_NE(lq.plan().describe().find("becots (O(1) on a BeCOTS slab or stack): yes"), std::string::npos);
+  }
+  // A screw and a translation (a lattice on a cylinder): no apex.
+  const Lattice cylinder = Lattice::incremental({{{1, 0, 0}, 0.1}}, {}, {6, 4, 1},
+                                                Similarity::rotation(0.3, {0, 0, 1}, {0, 0, 0}),
+                                                Similarity::translation({0, 0, 0.5}), Similarity::identity());
+  const LatticeQuery lq(cylinder);
+  EXPECT_FALSE(lq.plan().becots_valid);
+  EXPECT_NE(lq.plan().becots_reason.find("no apex"), std::string::npos) << lq.plan().becots_reason;
+  EXPECT_THROW(lq.query_ball({{1, 0, 0}, 0.1}, QueryMethod::Becots), InvalidInput);
+  // Layers moved last (after U and V) are not a BeCOTS stack.
+  const Lattice last = Lattice::incremental(laid.definition().nodes, laid.definition().beams, {5, 4, 3},
+                                            map.field(0.2, 0.0), map.field(0.0, 0.25),
+                                            Similarity::translation(0.05 * map.axis()));
+  EXPECT_FALSE(LatticeQuery(last).plan().becots_valid);
+  EXPECT_EQ(query_method_from_string("becots"), QueryMethod::Becots);
 }
 
 TEST(BecotsLattice, FileRoundTripAndBadInput) {

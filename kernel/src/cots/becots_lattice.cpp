@@ -32,13 +32,15 @@ BecotsConnectivity becots_connectivity(const std::string& name) {
 }
 
 Lattice becots_lattice(const BecotsMap& map, const BecotsConnectivity& cells, const Counts& counts, double radius,
-                       double layer_raise, double beam_ratio) {
+                       double layer_raise, double beam_ratio, double layer_offset) {
   if (counts.u < 1 || counts.v < 1 || counts.w < 1) fail_input("counts", "each count must be >= 1");
   require_positive(radius, "radius");
   require_finite(layer_raise, "layer_raise");
+  require_finite(layer_offset, "layer_offset");
   require_finite(beam_ratio, "beam_ratio");
   if (beam_ratio < 0.0 || beam_ratio > 1.0) fail_input("beam_ratio", "must be 0 (hull beams) or in (0, 1]");
-  if (counts.w > 1 && layer_raise == 0.0) fail_input("layer_raise", "must be non-zero for more than one layer");
+  if (counts.w > 1 && layer_raise == 0.0 && layer_offset == 0.0)
+    fail_input("layer_raise", "or layer_offset must be non-zero for more than one layer");
   if (cells.nodes.empty()) fail_input("cells.nodes", "a group needs at least one node");
   const double du = 1.0 / static_cast<double>(counts.u), dv = 1.0 / static_cast<double>(counts.v);
   std::vector<TemplateNode> nodes;
@@ -59,7 +61,7 @@ Lattice becots_lattice(const BecotsMap& map, const BecotsConnectivity& cells, co
     }
   const DirectionControl U{map.field(du, 0.0), StepControl::Incremental};
   const DirectionControl V{map.field(0.0, dv), StepControl::Incremental};
-  const DirectionControl W{Similarity::translation(layer_raise * map.axis()), StepControl::Incremental};
+  const DirectionControl W{Similarity::translation(layer_raise * map.axis() + layer_offset * map.normal()), StepControl::Incremental};
   return Lattice::ordered(std::move(nodes), std::move(beams), counts, U, V, W, Similarity::identity(), {2, 0, 1});
 }
 

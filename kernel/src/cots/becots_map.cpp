@@ -282,6 +282,13 @@ std::optional<Vec3> BecotsMap::apex() const {
 
 double BecotsMap::height() const { return height_; }
 
+Vec3 BecotsMap::normal() const {
+  // The derivatives at (0, 0) without the apex: dM/dx = embed(Lu (a - f)) + hu T, likewise for y (see field()).
+  const Vec3 du = embed({shadow_.gu_.real(), shadow_.gu_.imag()}) + hu_ * axis_;
+  const Vec3 dv = embed({shadow_.gv_.real(), shadow_.gv_.imag()}) + hv_ * axis_;
+  return glm::normalize(glm::cross(du, dv));
+}
+
 BecotsMap BecotsMap::raised(double z) const {
   require_within(z, kMaxCoordinate, "z");
   BecotsMap m = *this;

@@ -44,7 +44,13 @@ BecotsRangeFinder::BecotsRangeFinder(const BecotsMap& map, std::vector<Ball> bal
     require_within(balls_[n].center, kMaxCoordinate, name + ".center");
     require_finite(balls_[n].radius, name + ".radius");
     if (balls_[n].radius < 0.0) fail_input(name + ".radius", "must be >= 0");
-    const Bound b = bound_of(balls_[n]);
+    Bound b = bound_of(balls_[n]);
+    // Azimuths on the branch nearest the first ball's: balls on both sides of the cut at +-pi would otherwise
+    // bound the template by the long way round between them, and miss the short way they really span.
+    if (n > 0 && !b.everything && !template_.everything) {
+      const double shift = kTwoPi * std::round((0.5 * (template_.t0 + template_.t1) - 0.5 * (b.t0 + b.t1)) / kTwoPi);
+      b.t0 += shift, b.t1 += shift;
+    }
     if (n == 0) template_ = b;
     template_.s0 = std::min(template_.s0, b.s0), template_.s1 = std::max(template_.s1, b.s1);
     template_.t0 = std::min(template_.t0, b.t0), template_.t1 = std::max(template_.t1, b.t1);
@@ -80,6 +86,11 @@ BecotsRangeFinder::Bound BecotsRangeFinder::bound_of(const Ball& b) const {
   out.p0 = polar - spread - kRangePad;
   out.p1 = polar + spread + kRangePad;
   return out;
+}
+
+BecotsRangeFinder::PolarInterval BecotsRangeFinder::polar_interval(const Ball& b) const {
+  const Bound q = bound_of(b);
+  return {q.p0, q.p1, q.everything};
 }
 
 Vec2 BecotsRangeFinder::parameters_at(double s, double theta) const {

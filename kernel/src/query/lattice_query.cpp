@@ -8,6 +8,7 @@
 #include "query/query_internal.hpp"
 #include "steady/core/errors.hpp"
 #include "steady/core/numeric_range.hpp"
+#include "steady/query/becots_query.hpp"
 #include "steady/query/query_tolerance.hpp"
 
 namespace steady {
@@ -22,16 +23,18 @@ const char* to_string(QueryMethod method) {
     case QueryMethod::Blocks: return "blocks";
     case QueryMethod::PaperRows: return "rows-paper";
     case QueryMethod::PaperSlabs: return "slabs-paper";
+    case QueryMethod::Becots: return "becots";
   }
   return "unknown";
 }
 
 QueryMethod query_method_from_string(const std::string& name, const std::string& field) {
   for (QueryMethod m : {QueryMethod::Auto, QueryMethod::Naive, QueryMethod::Rows, QueryMethod::Slabs,
-                        QueryMethod::Constant, QueryMethod::Blocks, QueryMethod::PaperRows, QueryMethod::PaperSlabs})
+                        QueryMethod::Constant, QueryMethod::Blocks, QueryMethod::PaperRows, QueryMethod::PaperSlabs,
+                        QueryMethod::Becots})
     if (name == to_string(m)) return m;
   fail_input(field, "unknown query method '" + name +
-                        "' (auto, naive, rows, slabs, constant, blocks, rows-paper, slabs-paper)");
+                        "' (auto, naive, rows, slabs, constant, blocks, rows-paper, slabs-paper, becots)");
 }
 
 void validate_query_ball(const Ball& query, const std::string& field) {
@@ -233,8 +236,28 @@ struct LatticeQuery::Impl {
   // valid; the Impl lives on the heap, so the state's reference survives moves of the LatticeQuery.
   const Lattice lattice;
   detail::QueryState state;   // on lattice_for_paths(lattice)
-  explicit Impl(const Lattice& l) : lattice(l), state(lattice_for_paths(lattice)) {}
+  std::optional<BecotsLatticeQuery> becots;  // on the lattice itself, when it is laid on a BeCOTS map
+  explicit Impl(const Lattice& l) : lattice(l), state(lattice_for_paths(lattice)) { detect_becots(); }
   bool translates() const { return &state.lattice != &lattice; }
+
+  void detect_becots() {
+    QueryPlan& plan = state.plan;
+    if (!plan.steady_reason.empty()) {
+      plan.becots_reason = plan.steady_reason;
+      return;
+    }
+    const std::optional<BecotsMap> map = becots_map_of(lattice, &plan.becots_reason);
+    if (!map) return;
+    try {
+      becots.emplace(lattice, *map);
+    } catch (const InvalidInput& e) {  // the candidate map does not reproduce the steps, or has no finder
+      plan.becots_reason = e.what();
+      return;
+    }
+    plan.becots_valid = true;
+    plan.becots_reason.clear();
+    plan.automatic = QueryMethod::Becots;
+  }
 };
 
 namespace {
@@ -269,6 +292,9 @@ QueryMethod LatticeQuery::resolve(QueryMethod method) const {
       if (!p.constant_valid)
         fail_input("method", std::string("'constant' (O(1)) does not apply: ") + p.constant_reason);
       return method;
+    case QueryMethod::Becots:
+      if (!p.becots_valid) fail_input("method", std::string("'becots' does not apply: ") + p.becots_reason);
+      return method;
     default: return method;
   }
 }
@@ -277,6 +303,10 @@ void LatticeQuery::visit(const Ball& query, HitSink& caller_sink, QueryMethod me
   validate_query_ball(query, "query");
   const detail::QueryState& q = impl_->state;
   const QueryMethod m = resolve(method);
+  if (m == QueryMethod::Becots) {  // on the lattice's own indices: no brick translation
+    g_last_candidates = impl_->becots->visit(query, caller_sink);
+    return;
+  }
   FromBrickSink translated(impl_->lattice, caller_sink);
   HitSink& sink = impl_->translates() ? static_cast<HitSink&>(translated) : caller_sink;
   detail::Probe probe{q, query, query, sink};
@@ -294,6 +324,7 @@ void LatticeQuery::visit(const Ball& query, HitSink& caller_sink, QueryMethod me
     case QueryMethod::PaperSlabs: detail::visit_slabs(q, probe, false); break;
     case QueryMethod::Constant: detail::visit_constant(q, probe); break;
     case QueryMethod::Blocks:
+    case QueryMethod::Becots:  // handled above
     case QueryMethod::Auto: detail::visit_blocks(q, probe); break;
   }
   g_last_candidates = probe.candidates;

@@ -319,6 +319,7 @@ std::string QueryPlan::describe() const {
        << ", W " << detail::map_names(slabs_w);
   else
     os << "no (" << constant_reason << ")";
+  os << "; becots (O(1) on a BeCOTS slab or stack): " << (becots_valid ? "yes" : "no (" + becots_reason + ")");
   os << "; auto: " << to_string(automatic);
   return os.str();
 }

@@ -1,11 +1,14 @@
 #pragma once
 // BeCOTS lattices (Kurzeja's dissertation, 4.5 and 6.3): balls and beams laid on a BeCOTS map, one group per tile,
-// in one layer (a slab) or in layers raised along the map's axis by a constant distance (a stack: each layer is the
-// pattern whose corner A, and the template group with it, is raised by k z, so its group origins lie on the raised
-// map M_kz(x, y) = S(x, y)(A + k z T)). They are steady bricks: group (i, j, k) is placed by V^j o U^i o W^k, with
-// U = field(1/nu, 0) and V = field(0, 1/nv) the map's commuting per-tile similarities and W the translation by z
-// along the axis, applied first. So the result is an ordinary Lattice (layout "any-order-brick", order W U V) and
-// every consumer (queries, properties, B-rep, meshes, files) takes it as it is.
+// in one layer (a slab) or in counts.w layers (a stack). The layers share the map's field; each next one only moves
+// corner A, and the template group with it, by a constant step: along the axis (6.3 (a), `layer_raise`: its group
+// origins lie on the raised map M_kz(x, y) = S(x, y)(A + k z T)) and/or along the range's normal at A (6.3 (b),
+// `layer_offset`: A_k = A + k d N, on the line of A corners the dissertation's O(1) stack query maps points onto).
+// They are steady bricks: group (i, j, k) is placed by V^j o U^i o W^k, with U = field(1/nu, 0) and V = field(0,
+// 1/nv) the map's commuting per-tile similarities and W the translation by z T + d N, applied first. So the result
+// is an ordinary Lattice (layout "any-order-brick", order W U V) and every consumer (queries, properties, B-rep,
+// meshes, files) takes it as it is. The template moves rigidly with A: a node away from A (kagome, honeycomb) is
+// moved by the same step as A, not by the step scaled and turned to its own place.
 #include <string>
 #include <vector>
 
@@ -25,11 +28,12 @@ struct BecotsConnectivity {
 // three beams per hub). InvalidInput naming the choices otherwise.
 BecotsConnectivity becots_connectivity(const std::string& name);
 
-// The lattice of `cells` on the nu x nv tiles of `map` (counts.u = nu, counts.v = nv), in counts.w layers raised by
-// `layer_raise` along the axis. Node n of group (0, 0) sits at map(s / nu, t / nv) with the radius
+// The lattice of `cells` on the nu x nv tiles of `map` (counts.u = nu, counts.v = nv), in counts.w layers, each
+// moved from the one before by `layer_raise` along the axis plus `layer_offset` along the normal at A
+// (BecotsMap::normal). Node n of group (0, 0) sits at map(s / nu, t / nv) with the radius
 // `radius` m_u^{s/nu} m_v^{t/nv} (so every node is a copy of one ball, scaled with the map); beams are the hull of
 // their balls, or, with beam_ratio in (0, 1], cones of beam_ratio times their nodes' radii.
 Lattice becots_lattice(const BecotsMap& map, const BecotsConnectivity& cells, const Counts& counts, double radius,
-                       double layer_raise = 0.0, double beam_ratio = 0.0);
+                       double layer_raise = 0.0, double beam_ratio = 0.0, double layer_offset = 0.0);
 
 }  // namespace steady

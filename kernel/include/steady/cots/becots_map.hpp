@@ -86,6 +86,10 @@ class BecotsMap {
   double bend_angle() const;
   // (A - F).T: how far A lies above the plane through the apex across the axis (0 for a flat map).
   double height() const;
+  // The unit normal of the range at A, dM/dx x dM/dy normalized (so it follows the map's orientation). It lies in
+  // the plane through A and the axis (the range is a surface of revolution about it), so moving A along it moves A
+  // across the cones about the apex: the normal-offset layers of a stack (6.3 (b)).
+  Vec3 normal() const;
 
   Vec3 a() const { return a_; }
   Vec3 b() const { return b_; }

@@ -44,6 +44,15 @@ class BecotsRangeFinder {
   // The same by testing every ball of the pattern (the reference the tests compare with).
   std::vector<PatternBall> interfering_naive(const Ball& query) const;
 
+  // The angles to the axis, seen from the apex, that a ball spans (the field keeps them: every group's balls lie in
+  // the template's interval). `everything` when the ball holds the apex. A stack's layers are told apart by them.
+  struct PolarInterval {
+    double p0 = 0.0, p1 = 0.0;
+    bool everything = true;
+  };
+  PolarInterval polar_interval() const { return {template_.p0, template_.p1, template_.everything}; }
+  PolarInterval polar_interval(const Ball& b) const;
+
   Ball ball(int i, int j, int n) const;
   int nu() const { return nu_; }
   int nv() const { return nv_; }

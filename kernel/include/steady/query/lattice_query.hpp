@@ -19,7 +19,10 @@
 // row's motion keeps; for slabs, U's maps that V and W keep), which removes the paper's false positives
 // of queries inside a row's slab but far from it. PaperRows and PaperSlabs are the paper's algorithms
 // without that rejection, kept to reproduce its tables.
-//   Auto      Constant when it applies, Blocks otherwise.
+//   Becots    O(1) on a BeCOTS lattice (becots_query.hpp), slab or stack: the map is recovered from the steps
+//             (becots_map_of) and its RangeFinder gives the candidate groups of the layers the query's shell of
+//             cones meets. The conditions of Slabs and Constant fail on the commuting spirals of these lattices.
+//   Auto      Becots when it applies, else Constant when it applies, else Blocks.
 // The conditions of Slabs and Constant are detected numerically (kConditionTolerance) when the query
 // object is built. Detection is per map, not per direction: a direction keeps only the maps the other
 // directions leave unchanged, and extra maps are tried that the paper does not use (the distance to a
@@ -43,9 +46,9 @@
 
 namespace steady {
 
-enum class QueryMethod { Auto, Naive, Rows, Slabs, Constant, Blocks, PaperRows, PaperSlabs };
+enum class QueryMethod { Auto, Naive, Rows, Slabs, Constant, Blocks, PaperRows, PaperSlabs, Becots };
 const char* to_string(QueryMethod method);
-// "auto", "naive", "rows", "slabs", "constant", "blocks", "rows-paper", "slabs-paper"; throws
+// "auto", "naive", "rows", "slabs", "constant", "blocks", "rows-paper", "slabs-paper", "becots"; throws
 // InvalidInput naming `field` otherwise.
 QueryMethod query_method_from_string(const std::string& name, const std::string& field = "method");
 
@@ -78,6 +81,8 @@ struct QueryPlan {
   bool constant_valid = false;
   std::string slabs_reason;     // why Slabs does not apply (empty when it does)
   std::string constant_reason;  // why Constant does not apply
+  bool becots_valid = false;
+  std::string becots_reason;    // why Becots does not apply
   QueryMethod automatic = QueryMethod::Blocks;
   // The normalized maps each path uses, by direction (world-space steps U', V', W').
   RowMotion rows_w;
