@@ -301,6 +301,12 @@ class CurvedLatticeTest(unittest.TestCase):
         self.assertTrue(obj.Shape.isValid())
         self.assertEqual(len(obj.Shape.Solids), obj.BallCount + obj.BeamCount)
         self.trim_into_cylinder(obj, 10.5)
+        # the same ring along V (the corners taken with U and V swapped): closed after 8 rows just as well
+        a, b, c, d = cone_corners(math.radians(45))
+        along_v = self.make(corners=[a, d, c, b], cells=(3, 9), layers=1, turns=(0, 1), node_radius=0.3)
+        lat_v, ring_v = curved_lattice.lattice_and_ring(along_v)
+        self.assertEqual((ring_v, lat_v.counts, along_v.BeamCount), ((1, 8, 9), (3, 8, 1), obj.BeamCount))
+        self.assertGreater(min_distance(lat_v.balls()[0]), 2.0 * radii.max())
         # ten cells of 40.5 degrees: no group falls on the first, the tenth overlaps it: refused naming TurnsU
         obj.CellsU = 10
         self.doc.recompute()
