@@ -300,6 +300,13 @@ class CurvedLatticeTest(unittest.TestCase):
         self.assertEqual({i["kind"] for i in lat.clean_check()["issues"]} - {"circle_overlap"}, set())
         self.assertTrue(obj.Shape.isValid())
         self.assertEqual(len(obj.Shape.Solids), obj.BallCount + obj.BeamCount)
+        # the whole ring as one solid: FreeCAD reads the kernel's B-rep, its volume the kernel's closed form
+        import Part
+        shape = Part.Shape()
+        shape.importBrepFromString(lat.brep())
+        self.assertTrue(shape.isValid())
+        self.assertEqual(len(shape.Solids), 1)
+        self.assertAlmostEqual(shape.Volume, lat.properties()["volume"], delta=1e-7 * shape.Volume)
         self.trim_into_cylinder(obj, 10.5)
         # the same ring along V (the corners taken with U and V swapped): closed after 8 rows just as well
         a, b, c, d = cone_corners(math.radians(45))
