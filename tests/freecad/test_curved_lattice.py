@@ -336,6 +336,13 @@ class CurvedLatticeTest(unittest.TestCase):
                 self.assertEqual(getattr(obj, prop), before)
                 self.assertTrue(any(t.startswith("%s: %s: must be within" % (obj.Label, prop)) for t in warnings.texts),
                                 warnings.texts)
+        # a parallelogram's U and V are translations, which have no turns: the recompute fails naming TurnsU
+        flat = api.make_curved_lattice(self.doc, corners=[(0, 0, 0), (0, 10, 0), (10, 10, 0), (10, 0, 0)],
+                                       turns=(1, 0))
+        self.doc.recompute()
+        self.assertIn("Invalid", flat.State)
+        self.assertTrue(flat.getStatusString().startswith(flat.Label + ": TurnsU: "), flat.getStatusString())
+        self.doc.removeObject(flat.Name)
         with self.assertRaises(ValueError) as raised:
             api.make_curved_lattice(self.doc, turns=(1, 0.5))
         self.assertIn("turns", str(raised.exception))
