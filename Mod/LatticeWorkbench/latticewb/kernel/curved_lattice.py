@@ -75,6 +75,11 @@ def turns(obj):
     return tuple(getattr(obj, name, 0) for name in TURNS)
 
 
+def _turned(obj):
+    """The names of the turns properties that are set ('TurnsU', 'TurnsU, TurnsV'), for messages."""
+    return ", ".join(name for name, k in zip(TURNS, turns(obj)) if k)
+
+
 def _sense(angle, other):
     """+1 or -1: the way a direction turns about the kernel's axis (its principal angle), or when it does not turn,
     the way the other direction does; +1 when neither turns."""
@@ -101,7 +106,7 @@ def becots_map(obj):
     try:
         return sl.BecotsMap(a, b, c, d, branches=branches(principal, turns(obj)))
     except ValueError as error:  # a map that cannot turn (a parallelogram: U and V translations)
-        raise ValueError("%s: %s" % (", ".join(t for t, k in zip(TURNS, turns(obj)) if k), error)) from None
+        raise ValueError("%s: %s" % (_turned(obj), error)) from None
 
 
 def turn_degrees(becots_map):
@@ -138,8 +143,8 @@ def lattice_and_ring(obj):
             raise ValueError("%s: the sheet winds over itself (U turns %.1f, V %.1f degrees about its axis) and "
                              "%d pairs of elements of distant groups meet: %s%s; change the turns, the cells or the "
                              "corners (a ring closes when a group falls exactly on the first)"
-                             % (", ".join(t for t, k in zip(TURNS, turns(obj)) if k), degrees[0], degrees[1],
-                                count, "; ".join(found), "; ..." if count > len(found) else ""))
+                             % (_turned(obj), degrees[0], degrees[1], count, "; ".join(found),
+                                "; ..." if count > len(found) else ""))
     return result, ring
 
 
