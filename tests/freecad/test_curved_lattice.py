@@ -1,7 +1,9 @@
 """CurvedLattice inside FreeCAD (issue 15): a BeCOTS lattice from four corners typed or linked to vertices, rebuilt
 when a corner is edited or a linked vertex moves, bad corners and nonsense properties refused naming the property,
 and a LatticePart trimming it into a cylinder with the 'bridge' policy (one valid solid, every hub that lost a
-neighbour bridged, the part's volume the kernel's, its STL bridged too)."""
+neighbour bridged, the part's volume the kernel's, its STL bridged too); rings from TurnsU: three quarters of a turn
+on a cone, a whole ring closed seamlessly (no repeated balls, the seam joined), a sheet winding over itself refused,
+both trimmed into a body."""
 import math
 import os
 import tempfile
@@ -16,8 +18,8 @@ from latticewb import api
 from latticewb.kernel import curved_lattice, mesh_export
 from property_editing import Warnings, same
 
-# A planar sector of rings about the z axis in the plane z = 1: radius 7 to 24, 160 degrees (corners can turn by at
-# most half a turn: the map takes the principal angle).
+# A planar sector of rings about the z axis in the plane z = 1: radius 7 to 24, 160 degrees (corners alone turn by
+# at most half a turn: the map takes the principal angle; TurnsU adds whole turns).
 TURN = math.radians(160.0)
 
 
@@ -26,6 +28,33 @@ def ring_point(radius, angle, z=1.0):
 
 
 CORNERS = [ring_point(7, 0), ring_point(24, 0), ring_point(24, TURN), ring_point(7, TURN)]
+
+
+# A cone about the z axis, apex (0, 0, -10): U turns a quarter turn with no growth, V grows by 1.4 and twists by 20
+# degrees (so the corners are not coplanar).
+APEX = FreeCAD.Vector(0, 0, -10)
+
+
+def cone_point(p, angle, scale=1.0):
+    rot = FreeCAD.Rotation(FreeCAD.Vector(0, 0, 1), math.degrees(angle))
+    return APEX + rot.multVec(p - APEX) * scale
+
+
+def cone_corners(turn):
+    a = FreeCAD.Vector(8, 0, 0)
+    b = cone_point(a, math.radians(20), 1.4)
+    return [a, b, cone_point(b, turn), cone_point(a, turn)]
+
+
+def angles_about_z(points):
+    """Angles (degrees) of points about the z axis, unwrapped along the sequence."""
+    return np.degrees(np.unwrap(np.arctan2(points[:, 1], points[:, 0])))
+
+
+def min_distance(centers):
+    d = np.linalg.norm(centers[:, None, :] - centers[None, :, :], axis=2)
+    np.fill_diagonal(d, np.inf)
+    return d.min()
 
 
 def close(a, b, tol=1e-9):
@@ -196,6 +225,146 @@ class CurvedLatticeTest(unittest.TestCase):
         self.doc.recompute()
         self.assertTrue(part.isValid(), part.getStatusString())
         self.assertEqual(len(part.Shape.Solids), 1)
+
+
+    def trim_into_cylinder(self, lattice, radius):
+        body = self.doc.addObject("Part::Cylinder", "Body")
+        body.Radius, body.Height = radius, 40.0
+        body.Placement.Base = APEX
+        part = api.make_part(self.doc, lattice, body, policy="bridge")
+        self.doc.recompute()
+        self.assertTrue(part.isValid(), part.getStatusString())
+        self.assertTrue(part.Shape.isValid())
+        self.assertEqual(len(part.Shape.Solids), 1)
+        self.assertGreater(part.Volume, 0.0)
+        stats = {}
+        curved_lattice.lattice(lattice).brep(body.Shape.exportBrepToString(), "bridge", stats=stats)
+        self.assertGreater(stats["bridges"], 0)
+        self.assertEqual(stats["bridges"], stats["lost_neighbour_hubs"])
+        return part
+
+    def test_three_quarters_of_a_turn_from_turns_u(self):
+        corners = cone_corners(math.radians(90))
+        obj = self.make(corners=corners, cells=(9, 3), layers=1, turns=(-1, 0), node_radius=0.3)
+        lat = curved_lattice.lattice(obj)
+        self.assertEqual(lat.counts, (9, 3, 1))  # no group falls on the first: nothing left out
+        # the kernel's map with the branch that turns U three quarters (the other way round from the corners)
+        a, b, c, d = (tuple(p) for p in corners)
+        maps = [sl.BecotsMap(a, b, c, d, branches=(k, 0)) for k in (-1, 1)]
+        wanted = [m for m in maps if abs(abs(m.log_u.imag) - 1.5 * math.pi) < 1e-9]
+        self.assertEqual(len(wanted), 1)
+        self.assertAlmostEqual(abs(curved_lattice.becots_map(obj).log_u.imag), 1.5 * math.pi, delta=1e-9)
+        for i in range(9):
+            for j in range(3):
+                center, radius = lat.ball(i, j, 0, 0)
+                self.assertTrue(close(center, wanted[0].map((i / 9.0, j / 3.0)), 1e-9), (i, j))
+        # about the cone's axis (z through the apex): the corners turn +90 degrees; -1 goes the other way round,
+        # 30 degrees a column, and the first row spans 8 of 9 columns of 270 degrees: more than a half turn
+        row = angles_about_z(np.array([lat.ball(i, 0, 0, 0)[0] for i in range(9)]))
+        np.testing.assert_allclose(np.diff(row), -30.0, atol=1e-7)
+        self.assertGreater(abs(row[-1] - row[0]), 180.0)
+        # TurnsU 1 goes on the way the corners turn instead: 450 degrees, 50 a column; on this cone (no growth
+        # along U) the ninth column then crosses the first two: refused naming TurnsU rather than overlapping
+        obj.TurnsU = 1
+        self.doc.recompute()
+        self.assertIn("Invalid", obj.State)
+        self.assertIn("TurnsU: the sheet winds over itself (U turns 450.0", obj.getStatusString())
+        row = angles_about_z(curved_lattice.becots_map(obj).map(np.array([[i / 9.0, 0.0] for i in range(9)])))
+        np.testing.assert_allclose(np.diff(row), 50.0, atol=1e-7)
+        obj.TurnsU = -1
+        self.doc.recompute()
+        self.assertTrue(obj.Shape.isValid())
+        self.assertEqual(len(obj.Shape.Solids), obj.BallCount + obj.BeamCount)  # the preview: element solids
+        self.trim_into_cylinder(obj, 10.5)
+
+    def test_a_whole_ring_is_closed_without_repeated_balls(self):
+        # D an eighth of a turn from A, one more turn: 9 cells of 45 degrees, the 9th group falls on the first
+        obj = self.make(corners=cone_corners(math.radians(45)), cells=(9, 3), layers=1, turns=(1, 0),
+                        node_radius=0.3)
+        lat, ring = curved_lattice.lattice_and_ring(obj)
+        self.assertEqual(ring, (0, 8, 9))
+        self.assertEqual(lat.counts, (8, 3, 1))
+        self.assertEqual(obj.BallCount, 8 * 3)
+        # the lattice as asked for holds the repeated column: its balls coincide with the first column's
+        repeated = sl.becots_lattice(curved_lattice.becots_map(obj), "triangle", (9, 3, 1), 0.3, beam_ratio=0.5)
+        self.assertLess(min_distance(repeated.balls()[0]), 1e-9)
+        centers, radii = lat.balls()
+        self.assertGreater(min_distance(centers), 2.0 * radii.max())  # no two balls closer than a ball's width
+        # the seam is joined: triangle beams along U close the loop (8 per row), V and diagonals as usual
+        self.assertEqual(obj.BeamCount, 8 * 3 + 8 * 2 + 8 * 2)
+        start, end = lat.beams()[:2]
+        pairs = {frozenset(p) for p in zip(start.tolist(), end.tolist())}
+        for j in range(3):
+            self.assertIn(frozenset((lat.ball_index(7, j, 0, 0), lat.ball_index(0, j, 0, 0))), pairs)
+        # no element meets a foreign one (crowded exit circles on a ball are built as they are without turns)
+        self.assertEqual({i["kind"] for i in lat.clean_check()["issues"]} - {"circle_overlap"}, set())
+        self.assertTrue(obj.Shape.isValid())
+        self.assertEqual(len(obj.Shape.Solids), obj.BallCount + obj.BeamCount)
+        # the whole ring as one solid: FreeCAD reads the kernel's B-rep, its volume the kernel's closed form
+        import Part
+        shape = Part.Shape()
+        shape.importBrepFromString(lat.brep())
+        self.assertTrue(shape.isValid())
+        self.assertEqual(len(shape.Solids), 1)
+        self.assertAlmostEqual(shape.Volume, lat.properties()["volume"], delta=1e-7 * shape.Volume)
+        self.trim_into_cylinder(obj, 10.5)
+        # the same ring along V (the corners taken with U and V swapped): closed after 8 rows just as well
+        a, b, c, d = cone_corners(math.radians(45))
+        along_v = self.make(corners=[a, d, c, b], cells=(3, 9), layers=1, turns=(0, 1), node_radius=0.3)
+        lat_v, ring_v = curved_lattice.lattice_and_ring(along_v)
+        self.assertEqual((ring_v, lat_v.counts, along_v.BeamCount), ((1, 8, 9), (3, 8, 1), obj.BeamCount))
+        self.assertGreater(min_distance(lat_v.balls()[0]), 2.0 * radii.max())
+        # ten cells of 40.5 degrees: no group falls on the first, the tenth overlaps it: refused naming TurnsU
+        obj.CellsU = 10
+        self.doc.recompute()
+        self.assertIn("Invalid", obj.State)
+        self.assertIn("TurnsU: the sheet winds over itself", obj.getStatusString())
+        self.assertIn("meet", obj.getStatusString())
+
+    def test_turns_refused_beyond_the_kernel_limit_and_saved(self):
+        obj = self.make(corners=cone_corners(math.radians(45)), cells=(9, 3), layers=1, turns=(1, 0),
+                        node_radius=0.3)
+        a, b, c, d = (tuple(p) for p in cone_corners(math.radians(45)))
+        sl.BecotsMap(a, b, c, d, branches=(curved_lattice.MAX_TURNS, 0))  # the kernel's own limit
+        with self.assertRaises(ValueError):
+            sl.BecotsMap(a, b, c, d, branches=(curved_lattice.MAX_TURNS + 1, 0))
+        for prop in ("TurnsU", "TurnsV"):
+            with self.subTest(prop=prop):
+                before = getattr(obj, prop)
+                with Warnings() as warnings:
+                    setattr(obj, prop, curved_lattice.MAX_TURNS + 1)
+                self.assertEqual(getattr(obj, prop), before)
+                self.assertTrue(any(t.startswith("%s: %s: must be within" % (obj.Label, prop)) for t in warnings.texts),
+                                warnings.texts)
+        # a parallelogram's U and V are translations, which have no turns: the recompute fails naming TurnsU
+        flat = api.make_curved_lattice(self.doc, corners=[(0, 0, 0), (0, 10, 0), (10, 10, 0), (10, 0, 0)],
+                                       turns=(1, 0))
+        self.doc.recompute()
+        self.assertIn("Invalid", flat.State)
+        self.assertTrue(flat.getStatusString().startswith(flat.Label + ": TurnsU: "), flat.getStatusString())
+        self.doc.removeObject(flat.Name)
+        with self.assertRaises(ValueError) as raised:
+            api.make_curved_lattice(self.doc, turns=(1, 0.5))
+        self.assertIn("turns", str(raised.exception))
+        # saved and reopened as a ring; a document saved before the turns existed opens with none
+        old = self.make(name="Old")
+        old.removeProperty("TurnsU")
+        old.removeProperty("TurnsV")
+        old_balls, name = old.BallCount, obj.Name
+        path = os.path.join(tempfile.mkdtemp(), "ring.FCStd")
+        self.doc.saveAs(path)
+        FreeCAD.closeDocument(self.doc.Name)
+        self.doc = FreeCAD.openDocument(path)
+        obj, old = self.doc.getObject(name), self.doc.getObject("Old")
+        self.assertEqual((obj.TurnsU, obj.TurnsV), (1, 0))
+        self.assertEqual((old.TurnsU, old.TurnsV), (0, 0))
+        for o in (obj, old):
+            o.touch()
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertTrue(old.isValid(), old.getStatusString())
+        self.assertEqual(curved_lattice.lattice(obj).counts, (8, 3, 1))
+        self.assertEqual(old.BallCount, old_balls)
 
 
 if __name__ == "__main__":

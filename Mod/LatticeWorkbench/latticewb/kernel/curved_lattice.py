@@ -1,9 +1,16 @@
-"""A CurvedLattice object's kernel work: its four corners (typed, or read from linked vertices) and the BeCOTS
-lattice the kernel lays on the field through them (steadylattice.becots_lattice, docs/cots.md)."""
+"""A CurvedLattice object's kernel work: its four corners (typed, or read from linked vertices), the whole turns
+added to U and V, and the BeCOTS lattice the kernel lays on the field through them (steadylattice.becots_lattice,
+docs/cots.md), closed into a ring when its groups come round to the first ones (curved_ring)."""
+import math
+
 import FreeCAD
+
+from latticewb.kernel import curved_ring
 
 CONNECTIVITIES = ["triangle", "kagome", "honeycomb"]
 CORNERS = "ABCD"
+TURNS = ("TurnsU", "TurnsV")
+MAX_TURNS = 100000  # the kernel's limit on a map's branches (kCotsMaxBranch, steady/cots/cots_map.hpp)
 
 
 def linked_point(obj, corner):
@@ -63,25 +70,87 @@ def corner_points(obj):
     return points
 
 
+def turns(obj):
+    """(TurnsU, TurnsV); 0 for a document saved before they existed."""
+    return tuple(getattr(obj, name, 0) for name in TURNS)
+
+
+def _turned(obj):
+    """The names of the turns properties that are set ('TurnsU', 'TurnsU, TurnsV'), for messages."""
+    return ", ".join(name for name, k in zip(TURNS, turns(obj)) if k)
+
+
+def _sense(angle, other):
+    """+1 or -1: the way a direction turns about the kernel's axis (its principal angle), or when it does not turn,
+    the way the other direction does; +1 when neither turns."""
+    return -1 if angle < 0.0 or (angle == 0.0 and other < 0.0) else 1
+
+
+def branches(principal, turns_uv):
+    """The kernel's branches (k_u, k_v) for TurnsU, TurnsV on the map with principal angles: each turn goes on the
+    way that direction already turns from A (toward D for U, toward B for V), so a positive TurnsU always lengthens
+    the U side by whole turns and -1 takes the other way round (a quarter turn becomes three quarters)."""
+    w_u, w_v = principal.log_u.imag, principal.log_v.imag
+    return turns_uv[0] * _sense(w_u, w_v), turns_uv[1] * _sense(w_v, w_u)
+
+
 def becots_map(obj):
-    """The steadylattice.BecotsMap through the corners (the kernel's ValueError names the corners it refuses:
-    'corners A, D: adjacent corners coincide ...', the names of the properties)."""
+    """The steadylattice.BecotsMap through the corners, with the whole turns TurnsU and TurnsV added (the kernel's
+    ValueError names the corners it refuses: 'corners A, D: adjacent corners coincide ...', the names of the
+    properties)."""
     import steadylattice as sl
     a, b, c, d = (tuple(p) for p in corner_points(obj))
-    return sl.BecotsMap(a, b, c, d)
+    principal = sl.BecotsMap(a, b, c, d)
+    if turns(obj) == (0, 0):
+        return principal
+    try:
+        return sl.BecotsMap(a, b, c, d, branches=branches(principal, turns(obj)))
+    except ValueError as error:  # a map that cannot turn (a parallelogram: U and V translations)
+        raise ValueError("%s: %s" % (_turned(obj), error)) from None
 
 
-def lattice(obj):
-    """The steadylattice.Lattice of a CurvedLattice object, where its corners are (its Placement is not applied:
-    the corners place it)."""
+def turn_degrees(becots_map):
+    """How far U and V turn about the field's axis from A (degrees, signed about the kernel's axis)."""
+    return math.degrees(becots_map.log_u.imag), math.degrees(becots_map.log_v.imag)
+
+
+def lattice_and_ring(obj):
+    """(the steadylattice.Lattice of a CurvedLattice object, where its corners are, and its ring: None, or
+    (direction 0 for U or 1 for V, q the groups kept, n the groups asked for) when the groups come round to the
+    first ones after q: the ring is then closed, the repeats left out). The Placement is not applied: the corners
+    place it. Raises ValueError naming TurnsU/TurnsV when the sheet winds over itself without closing."""
     import steadylattice as sl
     connectivity = obj.Connectivity
     if obj.JoinLayers and obj.Layers > 1:
         # each node joined to its copy in the next layer (the named connectivities join none)
         nodes, beams = sl.becots_connectivity(connectivity)
         connectivity = (nodes, list(beams) + [(n, 0, 0, 1, n) for n in range(len(nodes))])
-    return sl.becots_lattice(becots_map(obj), connectivity, (obj.CellsU, obj.CellsV, obj.Layers),
-                             obj.NodeRadius.Value, layer_raise=obj.LayerRaise.Value, beam_ratio=obj.BeamRatio)
+    field = becots_map(obj)
+    result = sl.becots_lattice(field, connectivity, (obj.CellsU, obj.CellsV, obj.Layers), obj.NodeRadius.Value,
+                               layer_raise=obj.LayerRaise.Value, beam_ratio=obj.BeamRatio)
+    ring = None
+    for direction in (0, 1):
+        q = curved_ring.closing_count(result, field, direction)
+        if q is not None:
+            asked = result.counts[direction]
+            result = curved_ring.closed_ring(result, direction, q, "Cells" + "UV"[direction])
+            ring = (direction, q, asked)
+            break
+    if turns(obj) != (0, 0):
+        found, count = curved_ring.far_contacts(result, ring[:2] if ring else None)
+        if count:
+            degrees = [abs(d) for d in turn_degrees(field)]
+            raise ValueError("%s: the sheet winds over itself (U turns %.1f, V %.1f degrees about its axis) and "
+                             "%d pairs of elements of distant groups meet: %s%s; change the turns, the cells or the "
+                             "corners (a ring closes when a group falls exactly on the first)"
+                             % (_turned(obj), degrees[0], degrees[1], count, "; ".join(found),
+                                "; ..." if count > len(found) else ""))
+    return result, ring
+
+
+def lattice(obj):
+    """The steadylattice.Lattice of a CurvedLattice object (lattice_and_ring without the ring)."""
+    return lattice_and_ring(obj)[0]
 
 
 def default_corners(size=40.0):

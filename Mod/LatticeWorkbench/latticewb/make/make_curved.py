@@ -2,20 +2,22 @@
 is up."""
 import FreeCAD
 
-from latticewb.kernel.curved_lattice import CONNECTIVITIES, CORNERS
+from latticewb.kernel.curved_lattice import CONNECTIVITIES, CORNERS, MAX_TURNS
 from latticewb.objects.curved_lattice import CurvedLattice
 
 
 def make_curved_lattice(doc, corners=None, links=None, connectivity="triangle", cells=(8, 6), layers=1,
-                        layer_raise=0.0, join_layers=True, node_radius=1.0, beam_ratio=0.5, name="CurvedLattice"):
+                        layer_raise=0.0, join_layers=True, node_radius=1.0, beam_ratio=0.5, turns=(0, 0),
+                        name="CurvedLattice"):
     """Adds a CurvedLattice to `doc` and returns it (recompute the document to build it).
 
     corners: four points A = M(0,0), B = M(0,1), C = M(1,1), D = M(1,0) (FreeCAD vectors or triples), or None for
     the defaults; links: four (object, "VertexN") pairs (or (object, "") for a Draft point, or None for a typed
     corner) giving the corners instead; connectivity: "triangle", "kagome" or "honeycomb"; cells: groups (along U, along V); layers and
     layer_raise (mm along the field's axis); join_layers (beams between the layers); node_radius (mm, at corner
-    A); beam_ratio: beam over node radius (0: hulls of the balls). Bad values raise ValueError naming the
-    parameter."""
+    A); beam_ratio: beam over node radius (0: hulls of the balls); turns: whole turns (TurnsU, TurnsV) added to
+    the U and V sides, each the way that side already turns (negative: the other way round); a ring whose group
+    falls exactly on the first is closed, its repeats left out. Bad values raise ValueError naming the parameter."""
     if connectivity not in CONNECTIVITIES:
         raise ValueError("connectivity: expected one of %s (got %r)" % (", ".join(CONNECTIVITIES), connectivity))
     if corners is not None and len(corners) != 4:
@@ -25,6 +27,9 @@ def make_curved_lattice(doc, corners=None, links=None, connectivity="triangle", 
     cells = tuple(cells)
     if len(cells) != 2 or not all(isinstance(c, int) and c >= 1 for c in cells):
         raise ValueError("cells: expected two counts >= 1 (got %r)" % (cells,))
+    turns = tuple(turns)
+    if len(turns) != 2 or not all(isinstance(t, int) and abs(t) <= MAX_TURNS for t in turns):
+        raise ValueError("turns: expected two whole numbers of turns within +-%d (got %r)" % (MAX_TURNS, turns))
     if not (isinstance(layers, int) and layers >= 1):
         raise ValueError("layers: expected a count >= 1 (got %r)" % (layers,))
     obj = doc.addObject("Part::FeaturePython", name)
@@ -41,6 +46,7 @@ def make_curved_lattice(doc, corners=None, links=None, connectivity="triangle", 
         obj.Connectivity = connectivity
         obj.CellsU, obj.CellsV = cells
         obj.Layers = layers
+        obj.TurnsU, obj.TurnsV = turns
         obj.LayerRaise = layer_raise
         obj.JoinLayers = bool(join_layers)
         obj.NodeRadius = node_radius

@@ -6,7 +6,8 @@ values. Four coplanar corners give a planar (COTS) sheet; others roll the sheet 
 The lattice has CellsU x CellsV groups of the chosen connectivity per layer, Layers layers raised by LayerRaise
 along the field's axis (JoinLayers: each node joined to its copy in the next layer). It is an ordinary lattice to
 the kernel, so a LatticePart trims it like a SteadyLattice, with any policy (bridge: whole hubs joined to the wall
-by bridges)."""
+by bridges). TurnsU and TurnsV add whole turns to U and V (the corners alone turn less than half a turn): rings and
+spirals of any length, closed seamlessly when a group falls on the first (kernel/curved_ring.py)."""
 import FreeCAD
 
 from latticewb.kernel import curved_lattice, lattice_shape
@@ -23,6 +24,12 @@ _PROPERTIES = [
     ("App::PropertyLinkSub", "BLink", "Corners", "A vertex giving corner B"),
     ("App::PropertyLinkSub", "CLink", "Corners", "A vertex giving corner C"),
     ("App::PropertyLinkSub", "DLink", "Corners", "A vertex giving corner D"),
+    ("App::PropertyInteger", "TurnsU", "Corners",
+     "Whole turns added to the U side (A toward D) about the field's axis: 1 goes on one more turn the way it "
+     "turns (a quarter turn becomes one and a quarter), -1 goes the other way round (three quarters). When a "
+     "group falls exactly on the first, the ring is closed: the repeats are left out and the seam is joined"),
+    ("App::PropertyInteger", "TurnsV", "Corners",
+     "Whole turns added to the V side (A toward B) about the field's axis, as TurnsU does for U"),
     ("App::PropertyEnumeration", "Connectivity", "Lattice",
      "Beams of each group: triangle (6 per inner hub), kagome (4), honeycomb (3)"),
     ("App::PropertyIntegerConstraint", "CellsU", "Lattice", "Groups along U (from A toward D)"),
@@ -71,6 +78,8 @@ class CurvedLattice(StatelessProxy):
         default("CellsU", (8, 1, MAX_COUNT, 1))
         default("CellsV", (6, 1, MAX_COUNT, 1))
         default("Layers", (1, 1, MAX_COUNT, 1))
+        default("TurnsU", 0)
+        default("TurnsV", 0)
         default("LayerRaise", 0.0)
         default("JoinLayers", True)
         default("NodeRadius", 1.0)
@@ -94,10 +103,16 @@ class CurvedLattice(StatelessProxy):
     def execute(self, obj):
         try:
             property_checks.require_sensible(obj)
-            lattice = curved_lattice.lattice(obj)
+            lattice, ring = curved_lattice.lattice_and_ring(obj)
         except ValueError as error:
             FreeCAD.Console.PrintError("%s: %s\n" % (obj.Label, error))
             raise ValueError("%s: %s" % (obj.Label, error)) from None
+        if ring is not None:
+            direction, kept, asked = ring
+            FreeCAD.Console.PrintMessage(
+                "%s: a closed ring of %d groups along %s: group %d falls on group 0, so the last %d of the %d asked "
+                "for repeat the first ones and are left out, and the seam is joined\n"
+                % (obj.Label, kept, "UV"[direction], kept, asked - kept, asked))
         self.lattice = lattice  # for the view provider's preview (not saved: rebuilt on recompute)
         property_checks.remember_good(obj)
         obj.BallCount = lattice.ball_count

@@ -187,6 +187,10 @@ def _curved_problem(obj, prop):
         return found if found else (None if radius > 0.0 else "must be > 0 (got %g)" % radius)
     if prop == "LayerRaise":
         return _size_problem(abs(_length(obj, prop)), "distance")
+    if prop in ("TurnsU", "TurnsV"):
+        from latticewb.kernel.curved_lattice import MAX_TURNS
+        turns = getattr(obj, prop)
+        return None if abs(turns) <= MAX_TURNS else "must be within +-%d whole turns (got %d)" % (MAX_TURNS, turns)
     if prop == "BeamRatio":
         ratio = obj.BeamRatio
         if not (math.isfinite(ratio) and 0.0 <= ratio <= 1.0):
