@@ -97,6 +97,33 @@ class CurvedLatticeTest(unittest.TestCase):
         self.assertFalse(curved_lattice.becots_map(obj).is_flat)
         self.assertGreater(obj.Shape.BoundBox.ZMax, before.ZMax + 1.0)
 
+    def test_layers_offset_along_the_normal(self):
+        # 6.3 (b): each layer's corner A moved by LayerOffset along the sheet's normal at A; the layer is the
+        # field's map through that corner (the kernel's BecotsMap.from_field, independently of the object).
+        import steadylattice as sl
+        lifted = [CORNERS[0], CORNERS[1], CORNERS[2] + FreeCAD.Vector(0, 0, 4), CORNERS[3]]
+        obj = self.make(corners=lifted, layers=3, layer_raise=0.0, layer_offset=1.5)
+        field = curved_lattice.becots_map(obj)
+        normal = np.asarray(field.normal)
+        tangent_u = field.map((1e-6, 0.0)) - field.map((-1e-6, 0.0))
+        tangent_v = field.map((0.0, 1e-6)) - field.map((0.0, -1e-6))
+        self.assertLess(abs(np.dot(normal, tangent_u / np.linalg.norm(tangent_u))), 1e-6)
+        self.assertLess(abs(np.dot(normal, tangent_v / np.linalg.norm(tangent_v))), 1e-6)
+        lat = curved_lattice.lattice(obj)
+        centers, _ = lat.balls()
+        for k in range(3):
+            a_k = np.asarray(lifted[0]) + 1.5 * k * normal
+            layer = sl.BecotsMap.from_field(field.apex, field.axis, a_k, field.log_u, field.log_v)
+            for i, j in [(0, 0), (7, 0), (3, 5), (7, 5)]:
+                self.assertTrue(close(centers[lat.ball_index(i, j, k, 0)], layer.map((i / 8, j / 6))), (i, j, k))
+        self.assertEqual(lat.query_plan()["automatic"], "becots")
+        self.assertEqual(obj.BallCount, 8 * 6 * 3)
+        obj.LayerOffset = -1.0
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        self.assertTrue(close(curved_lattice.lattice(obj).balls()[0][lat.ball_index(0, 0, 2, 0)],
+                              np.asarray(lifted[0]) - 2.0 * normal))
+
     def test_saved_and_reopened_with_its_links(self):
         vertex = self.doc.addObject("Part::Vertex", "Corner")
         vertex.X, vertex.Y, vertex.Z = CORNERS[1].x, CORNERS[1].y, CORNERS[1].z
@@ -178,6 +205,7 @@ class CurvedLatticeTest(unittest.TestCase):
         obj = self.make()
         for prop, value in [("BeamRatio", 2.0), ("BeamRatio", float("nan")), ("NodeRadius", 0.0),
                             ("Connectivity", ["hexagon"]), ("LayerRaise", float("inf")),
+                            ("LayerOffset", float("nan")),
                             ("A", FreeCAD.Vector(float("nan"), 0, 0))]:
             with self.subTest(prop=prop, value=value):
                 before = getattr(obj, prop)

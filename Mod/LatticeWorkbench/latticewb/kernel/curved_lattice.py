@@ -127,7 +127,8 @@ def lattice_and_ring(obj):
         connectivity = (nodes, list(beams) + [(n, 0, 0, 1, n) for n in range(len(nodes))])
     field = becots_map(obj)
     result = sl.becots_lattice(field, connectivity, (obj.CellsU, obj.CellsV, obj.Layers), obj.NodeRadius.Value,
-                               layer_raise=obj.LayerRaise.Value, beam_ratio=obj.BeamRatio)
+                               layer_raise=obj.LayerRaise.Value, beam_ratio=obj.BeamRatio,
+                               layer_offset=obj.LayerOffset.Value)
     ring = None
     for direction in (0, 1):
         q = curved_ring.closing_count(result, field, direction)

@@ -4,7 +4,7 @@ The corners A = M(0,0), B = M(0,1), C = M(1,1), D = M(1,0) are typed in the prop
 vertices (ALink .. DLink: a sketch's point, a Draft point, a vertex of a Part shape), which then win over the typed
 values. Four coplanar corners give a planar (COTS) sheet; others roll the sheet onto the cone the field follows.
 The lattice has CellsU x CellsV groups of the chosen connectivity per layer, Layers layers raised by LayerRaise
-along the field's axis (JoinLayers: each node joined to its copy in the next layer). It is an ordinary lattice to
+along the field's axis and offset by LayerOffset along the sheet's normal at A (JoinLayers: each node joined to its copy in the next layer). It is an ordinary lattice to
 the kernel, so a LatticePart trims it like a SteadyLattice, with any policy (bridge: whole hubs joined to the wall
 by bridges). TurnsU and TurnsV add whole turns to U and V (the corners alone turn less than half a turn): rings and
 spirals of any length, closed seamlessly when a group falls on the first (kernel/curved_ring.py)."""
@@ -37,6 +37,9 @@ _PROPERTIES = [
     ("App::PropertyIntegerConstraint", "Layers", "Lattice", "Layers of the stack (1: a slab)"),
     ("App::PropertyDistance", "LayerRaise", "Lattice",
      "How far each layer is raised along the field's axis from the one before (mm; may be negative)"),
+    ("App::PropertyDistance", "LayerOffset", "Lattice",
+     "How far each layer is offset along the sheet's normal at corner A from the one before (mm; may be negative; "
+     "adds to LayerRaise); each layer's groups follow the field from its corner"),
     ("App::PropertyBool", "JoinLayers", "Lattice", "Join each node to its copy in the next layer by a beam"),
     ("App::PropertyLength", "NodeRadius", "Lattice",
      "Radius of the balls at corner A's node (the others are scaled with the field)"),
@@ -81,6 +84,7 @@ class CurvedLattice(StatelessProxy):
         default("TurnsU", 0)
         default("TurnsV", 0)
         default("LayerRaise", 0.0)
+        default("LayerOffset", 0.0)
         default("JoinLayers", True)
         default("NodeRadius", 1.0)
         default("BeamRatio", 0.5)

@@ -185,7 +185,7 @@ def _curved_problem(obj, prop):
         radius = _length(obj, prop)
         found = _size_problem(radius)
         return found if found else (None if radius > 0.0 else "must be > 0 (got %g)" % radius)
-    if prop == "LayerRaise":
+    if prop in ("LayerRaise", "LayerOffset"):
         return _size_problem(abs(_length(obj, prop)), "distance")
     if prop in ("TurnsU", "TurnsV"):
         from latticewb.kernel.curved_lattice import MAX_TURNS
