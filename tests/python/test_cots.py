@@ -265,3 +265,27 @@ def test_becots_lattice_query_equals_the_lattice_query(rng):
         assert q.candidate_groups(c, r) < 600
     with pytest.raises(ValueError, match="lattice"):
         sl.BecotsLatticeQuery(lat, sl.BecotsMap(*becots_corners()))
+
+
+def test_becots_stack_by_normal_offset_takes_the_becots_path(rng):
+    m = sl.BecotsMap(*becots_corners()).unbent().bent(0.8)
+    nodes, beams = sl.becots_connectivity("kagome")
+    beams = beams + [(n, 0, 0, 1, n) for n in range(len(nodes))]
+    lat = sl.becots_lattice(m, (nodes, beams), (9, 8, 12), 0.01, layer_offset=0.04, beam_ratio=0.6)
+    plan = lat.query_plan()
+    assert plan["becots"] and plan["automatic"] == "becots", plan["becots_reason"]
+    centers, _ = lat.balls()
+    # layer k's corner ball: A moved k times along the range's normal at A
+    assert np.abs(centers[lat.ball_index(0, 0, 5, 0)] - (m.map(((0.5 / 9), 0.0)) + 5 * 0.04 * m.normal)).max() < 1e-12
+    q = sl.BecotsLatticeQuery(lat, m)
+    assert q.layer_count == 12
+    points = centers[rng.integers(len(centers), size=300)] + rng.uniform(-0.02, 0.02, (300, 3))
+    assert np.array_equal(lat.contains(points), lat.contains(points, method="naive"))
+    for p in points[:60]:
+        assert len(q.candidate_layers(p, 0.0)) <= 6
+        got, naive = lat.query_ball(p, 0.015), lat.query_ball(p, 0.015, method="naive")
+        assert np.array_equal(got[0], naive[0]) and np.array_equal(got[1], naive[1])
+    cubic = sl.Lattice.preset("cubic", [3, 3, 3], 1.0, 0.2, 0.1)
+    assert not cubic.query_plan()["becots"] and cubic.query_plan()["becots_reason"]
+    with pytest.raises(ValueError, match="layer_offset"):
+        sl.becots_lattice(m, "triangle", (4, 4, 2), 0.01, layer_offset=float("nan"))
