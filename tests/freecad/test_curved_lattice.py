@@ -397,3 +397,120 @@ class CurvedLatticeTest(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class FaceLatticeTest(unittest.TestCase):
+    """A CurvedLattice laid on a planar, cylindrical or conical face: the corners projected onto it, the field
+    following its surface, the layers going into the body (checked against the face's geometry and the kernel's
+    map through each moved corner, not against the object's own code)."""
+
+    def setUp(self):
+        self.doc = FreeCAD.newDocument("FaceLatticeTest")
+
+    def tearDown(self):
+        FreeCAD.closeDocument(self.doc.Name)
+
+    def laid(self, face, corners, **params):
+        args = dict(connectivity="triangle", cells=(6, 5), layers=3, layer_offset=2.5, node_radius=0.8,
+                    beam_ratio=0.5)
+        args.update(params)
+        obj = api.make_curved_lattice(self.doc, corners=corners, face=face, **args)
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        return obj, curved_lattice.lattice(obj)
+
+    def test_a_ring_around_a_cylinder_in_layers_inward_bridged_into_it(self):
+        body = self.doc.addObject("Part::Cylinder", "Body")
+        body.Radius, body.Height = 20.0, 40.0
+        self.doc.recompute()
+        eighth = math.pi / 4
+        # corners off the face (radius 23): projected onto it; D an eighth of a turn on, TurnsU closes the ring
+        corners = [FreeCAD.Vector(23, 0, 6), FreeCAD.Vector(23, 0, 34), FreeCAD.Vector(0, 0, 0),
+                   FreeCAD.Vector(23 * math.cos(eighth), 23 * math.sin(eighth), 6)]
+        obj, lat = self.laid((body, "Face1"), corners, cells=(9, 4), turns=(1, 0), layer_offset=3.0)
+        self.assertEqual(lat.counts, (8, 4, 3))  # the ninth column would repeat the first: a closed ring
+        centers, radii = lat.balls()
+        self.assertLess(np.abs(radii - 0.8).max(), 1e-12)  # no dilation on a cylinder
+        for k in range(3):
+            at = [lat.ball_index(i, j, k, 0) for i in range(8) for j in range(4)]
+            distance = np.hypot(centers[at, 0], centers[at, 1])
+            self.assertLess(np.abs(distance - (20.0 - 3.0 * k)).max(), 1e-9, k)  # layer k, 3k inward
+            angles = sorted(np.arctan2(centers[at, 1], centers[at, 0]) % (2 * math.pi))
+            self.assertAlmostEqual(angles[-1] - angles[0], 7 * eighth, places=9)
+        self.assertTrue(close(centers[lat.ball_index(0, 0, 0, 0)], (20, 0, 6)))
+        self.assertTrue(close(centers[lat.ball_index(0, 3, 0, 0)], (20, 0, 6 + 28 * 3 / 4)))
+        part = api.make_part(self.doc, obj, body, policy="bridge")
+        self.doc.recompute()
+        self.assertTrue(part.isValid(), part.getStatusString())
+        self.assertTrue(part.Shape.isValid())
+        self.assertEqual(len(part.Shape.Solids), 1)
+        stats = {}
+        lat.brep(body.Shape.exportBrepToString(), "bridge", stats=stats)
+        self.assertGreater(stats["bridges"], 0)
+        self.assertEqual(stats["bridges"], stats["lost_neighbour_hubs"])
+
+    def test_a_cone_face_gives_its_own_field(self):
+        body = self.doc.addObject("Part::Cone", "Body")
+        body.Radius1, body.Radius2, body.Height = 22.0, 8.0, 28.0
+        self.doc.recompute()
+        face = body.Shape.Faces[0]
+        self.assertEqual(type(face.Surface).__name__, "Cone")
+        corners = [FreeCAD.Vector(25, 0, 4), FreeCAD.Vector(14, 0, 22), FreeCAD.Vector(5, 5, 5),
+                   FreeCAD.Vector(19 * math.cos(1.0), 19 * math.sin(1.0), 4)]
+        obj, lat = self.laid((body, "Face1"), corners, layer_offset=1.5)
+        self.assertEqual(lat.query_plan()["automatic"], "becots")
+        field = curved_lattice.face_field.lay_on_face(obj, face, "Body.Face1", corner_points_of(obj),
+                                                      "triangle", (0, 0), None)[0]
+        apex, axis = face.Surface.Apex, face.Surface.Axis
+        self.assertLess(np.abs(np.asarray(field.apex) - tuple(apex)).max(), 1e-9)  # the face's apex, not another
+        centers, radii = lat.balls()
+        for x in (lat.ball_index(i, j, 0, 0) for i in range(6) for j in range(5)):
+            point = FreeCAD.Vector(*centers[x])
+            self.assertLess(face.Surface.projectPoint(point).distanceToPoint(point), 1e-9)  # layer 0 on the face
+        # the face's own normal at A, turned into the body (Part's normals point out of the solid)
+        inward = -face.normalAt(*face.Surface.parameter(FreeCAD.Vector(*centers[0])))
+        self.assertGreater(abs(np.dot(field.normal, tuple(inward))), 1.0 - 1e-12)
+        for k in (1, 2):  # layer k: the field's map through A moved 1.5 k into the body
+            a_k = np.asarray(centers[0]) + 1.5 * k * np.asarray(tuple(inward))
+            layer = sl.BecotsMap.from_field(field.apex, field.axis, a_k, field.log_u, field.log_v)
+            for i, j in [(0, 0), (5, 0), (2, 4), (5, 4)]:
+                self.assertTrue(close(centers[lat.ball_index(i, j, k, 0)], layer.map((i / 6, j / 5))))
+
+    def test_a_planar_face_and_faces_that_cannot_carry_it(self):
+        box = self.doc.addObject("Part::Box", "Box")
+        box.Length, box.Width, box.Height = 40, 30, 10
+        sphere = self.doc.addObject("Part::Sphere", "Ball")
+        self.doc.recompute()
+        top = [n for n, f in enumerate(box.Shape.Faces) if f.CenterOfMass.z > 9.9][0]
+        corners = [FreeCAD.Vector(2, 2, 13), FreeCAD.Vector(2, 28, 12), FreeCAD.Vector(38, 27, 14),
+                   FreeCAD.Vector(36, 3, 11)]
+        obj, lat = self.laid((box, "Face%d" % (top + 1)), corners, layer_offset=2.0)
+        centers, _ = lat.balls()
+        on_face = [FreeCAD.Vector(p.x, p.y, 10.0) for p in corners]  # the corners projected onto the top face
+        field = curved_lattice.becots_map(obj, on_face)
+        self.assertTrue(field.is_flat)
+        z = centers[[lat.ball_index(i, j, 0, 0) for i in range(6) for j in range(5)], 2]
+        self.assertLess(np.abs(z - 10.0).max(), 1e-9)  # layer 0 on the face
+        self.assertTrue(close(centers[lat.ball_index(0, 0, 0, 0)], (2, 2, 10)))
+        # layer k: the field's map through A moved 2 k down into the box; like every BeCOTS stack its layers
+        # share the field, so away from A the offset is scaled by the field's dilation (the raised maps are cones)
+        for k in (1, 2):
+            layer = sl.BecotsMap.from_field(field.apex, field.axis, (2, 2, 10 - 2.0 * k), field.log_u, field.log_v)
+            for i, j in [(0, 0), (5, 0), (2, 4), (5, 4)]:
+                self.assertTrue(close(centers[lat.ball_index(i, j, k, 0)], layer.map((i / 6, j / 5))), (i, j, k))
+            self.assertLess(centers[lat.ball_index(3, 2, k, 0)][2], 10.0 - k)  # below the face, inside the box
+        obj.FaceLink = (sphere, ["Face1"])
+        self.doc.recompute()
+        self.assertFalse(obj.isValid())
+        self.assertIn("FaceLink", obj.getStatusString())
+        obj.FaceLink = (box, ["Edge1"])
+        self.doc.recompute()
+        self.assertFalse(obj.isValid())
+        self.assertIn("FaceLink: link one face", obj.getStatusString())
+        obj.FaceLink = None
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+
+
+def corner_points_of(obj):
+    return [tuple(p) for p in curved_lattice.corner_points(obj)]

@@ -1,11 +1,12 @@
 """A CurvedLattice object's kernel work: its four corners (typed, or read from linked vertices), the whole turns
 added to U and V, and the BeCOTS lattice the kernel lays on the field through them (steadylattice.becots_lattice,
-docs/cots.md), closed into a ring when its groups come round to the first ones (curved_ring)."""
+docs/cots.md), or on a linked face that the field then follows (face_field), closed into a ring when its groups come
+round to the first ones (curved_ring)."""
 import math
 
 import FreeCAD
 
-from latticewb.kernel import curved_ring
+from latticewb.kernel import curved_ring, face_field
 
 CONNECTIVITIES = ["triangle", "kagome", "honeycomb"]
 CORNERS = "ABCD"
@@ -94,12 +95,12 @@ def branches(principal, turns_uv):
     return turns_uv[0] * _sense(w_u, w_v), turns_uv[1] * _sense(w_v, w_u)
 
 
-def becots_map(obj):
-    """The steadylattice.BecotsMap through the corners, with the whole turns TurnsU and TurnsV added (the kernel's
-    ValueError names the corners it refuses: 'corners A, D: adjacent corners coincide ...', the names of the
-    properties)."""
+def becots_map(obj, corners=None):
+    """The steadylattice.BecotsMap through the corners (default: corner_points(obj)), with the whole turns TurnsU
+    and TurnsV added (the kernel's ValueError names the corners it refuses: 'corners A, D: adjacent corners
+    coincide ...', the names of the properties)."""
     import steadylattice as sl
-    a, b, c, d = (tuple(p) for p in corner_points(obj))
+    a, b, c, d = (tuple(p) for p in (corners if corners is not None else corner_points(obj)))
     principal = sl.BecotsMap(a, b, c, d)
     if turns(obj) == (0, 0):
         return principal
@@ -125,10 +126,15 @@ def lattice_and_ring(obj):
         # each node joined to its copy in the next layer (the named connectivities join none)
         nodes, beams = sl.becots_connectivity(connectivity)
         connectivity = (nodes, list(beams) + [(n, 0, 0, 1, n) for n in range(len(nodes))])
-    field = becots_map(obj)
-    result = sl.becots_lattice(field, connectivity, (obj.CellsU, obj.CellsV, obj.Layers), obj.NodeRadius.Value,
-                               layer_raise=obj.LayerRaise.Value, beam_ratio=obj.BeamRatio,
-                               layer_offset=obj.LayerOffset.Value)
+    on_face = face_field.linked_face(obj)
+    if on_face is None:
+        field = becots_map(obj)
+        result = sl.becots_lattice(field, connectivity, (obj.CellsU, obj.CellsV, obj.Layers), obj.NodeRadius.Value,
+                                   layer_raise=obj.LayerRaise.Value, beam_ratio=obj.BeamRatio,
+                                   layer_offset=obj.LayerOffset.Value)
+    else:
+        field, result = face_field.lay_on_face(obj, *on_face, corner_points(obj), connectivity, turns(obj),
+                                               lambda *corners: becots_map(obj, corners))
     ring = None
     for direction in (0, 1):
         q = curved_ring.closing_count(result, field, direction)

@@ -8,15 +8,15 @@ from latticewb.objects.curved_lattice import CurvedLattice
 
 def make_curved_lattice(doc, corners=None, links=None, connectivity="triangle", cells=(8, 6), layers=1,
                         layer_raise=0.0, join_layers=True, node_radius=1.0, beam_ratio=0.5, turns=(0, 0),
-                        layer_offset=0.0,
-                        name="CurvedLattice"):
+                        layer_offset=0.0, face=None, name="CurvedLattice"):
     """Adds a CurvedLattice to `doc` and returns it (recompute the document to build it).
 
     corners: four points A = M(0,0), B = M(0,1), C = M(1,1), D = M(1,0) (FreeCAD vectors or triples), or None for
     the defaults; links: four (object, "VertexN") pairs (or (object, "") for a Draft point, or None for a typed
     corner) giving the corners instead; connectivity: "triangle", "kagome" or "honeycomb"; cells: groups (along U, along V); layers and
     layer_raise (mm along the field's axis) and layer_offset (mm along the sheet's normal at A); join_layers (beams between the layers); node_radius (mm, at corner
-    A); beam_ratio: beam over node radius (0: hulls of the balls); turns: whole turns (TurnsU, TurnsV) added to
+    A); beam_ratio: beam over node radius (0: hulls of the balls); face: (object, "FaceN") of a planar, cylindrical or
+    conical face the lattice is laid on (corners projected onto it, layer_offset going into the body); turns: whole turns (TurnsU, TurnsV) added to
     the U and V sides, each the way that side already turns (negative: the other way round); a ring whose group
     falls exactly on the first is closed, its repeats left out. Bad values raise ValueError naming the parameter."""
     if connectivity not in CONNECTIVITIES:
@@ -44,6 +44,8 @@ def make_curved_lattice(doc, corners=None, links=None, connectivity="triangle", 
                 if link is not None:  # None: that corner stays typed
                     target, sub = link
                     setattr(obj, corner + "Link", (target, [sub] if sub else []))
+        if face is not None:
+            obj.FaceLink = (face[0], [face[1]])
         obj.Connectivity = connectivity
         obj.CellsU, obj.CellsV = cells
         obj.Layers = layers

@@ -24,6 +24,9 @@ _PROPERTIES = [
     ("App::PropertyLinkSub", "BLink", "Corners", "A vertex giving corner B"),
     ("App::PropertyLinkSub", "CLink", "Corners", "A vertex giving corner C"),
     ("App::PropertyLinkSub", "DLink", "Corners", "A vertex giving corner D"),
+    ("App::PropertyLinkSub", "FaceLink", "Corners",
+     "A planar, cylindrical or conical face the lattice is laid on: the corners are projected onto it, the field "
+     "follows its surface (C is then implied, except on a plane) and LayerOffset goes into the body"),
     ("App::PropertyInteger", "TurnsU", "Corners",
      "Whole turns added to the U side (A toward D) about the field's axis: 1 goes on one more turn the way it "
      "turns (a quarter turn becomes one and a quarter), -1 goes the other way round (three quarters). When a "
