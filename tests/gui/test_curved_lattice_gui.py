@@ -56,6 +56,32 @@ class CurvedLatticeGuiTest(unittest.TestCase):
         self.assertTrue(parts[0].isValid(), parts[0].getStatusString())
         self.assertEqual(len(parts[0].Shape.Solids), 1)
 
+    def test_a_selected_face_lays_the_lattice_on_it(self):
+        body = self.doc.addObject("Part::Cylinder", "Body")
+        body.Radius, body.Height = 20.0, 40.0
+        self.doc.recompute()
+        FreeCADGui.Selection.clearSelection()
+        FreeCADGui.Selection.addSelection(body, "Face1")
+        FreeCADGui.runCommand("Lattice_NewCurvedLattice")
+        curved = [o for o in self.doc.Objects if types.is_curved_lattice(o)]
+        self.assertEqual(len(curved), 1)
+        obj = curved[0]
+        self.assertEqual(obj.FaceLink[0], body)
+        self.assertEqual(list(obj.FaceLink[1]), ["Face1"])
+        obj.NodeRadius, obj.Layers, obj.LayerOffset = 0.8, 2, 3.0
+        self.doc.recompute()
+        self.assertTrue(obj.isValid(), obj.getStatusString())
+        from latticewb.kernel import curved_lattice
+        lat = curved_lattice.lattice(obj)
+        centers, _ = lat.balls()
+        first = [lat.ball_index(i, j, 0, 0) for i in range(obj.CellsU) for j in range(obj.CellsV)]
+        second = [lat.ball_index(i, j, 1, 0) for i in range(obj.CellsU) for j in range(obj.CellsV)]
+        self.assertLess(max(abs(math.hypot(*centers[n][:2]) - 20.0) for n in first), 1e-9)
+        self.assertLess(max(abs(math.hypot(*centers[n][:2]) - 17.0) for n in second), 1e-9)
+        FreeCADGui.Selection.clearSelection()
+        ink, colours = ink_fraction(save_view("curved_lattice_on_face"))
+        self.assertGreater(ink, 0.02)
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -59,7 +59,8 @@ class NewLatticeCommand:
 
 class NewCurvedLatticeCommand:
     """Creates a CurvedLattice; four selected vertices (sketch points, Draft points, vertices of a shape), in the
-    order A, B, C, D, become its linked corners."""
+    order A, B, C, D, become its linked corners. A selected planar, cylindrical or conical face becomes its FaceLink:
+    the lattice is laid on it (with three vertices A, B, D, or four, or none: corners spread over the face)."""
 
     def GetResources(self):
         return {
@@ -67,7 +68,8 @@ class NewCurvedLatticeCommand:
             "MenuText": "New curved lattice",
             "ToolTip": "Create a BeCOTS lattice that follows the cone or plane through four corners: select four "
                        "vertices (A = M(0,0), B = M(0,1), C = M(1,1), D = M(1,0)) to link them, or edit the "
-                       "corners in the property editor",
+                       "corners in the property editor. Select a planar, cylindrical or conical face too (with "
+                       "A, B, D or none) to lay the lattice on it, in layers going into the body",
         }
 
     def IsActive(self):
@@ -75,21 +77,33 @@ class NewCurvedLatticeCommand:
 
     def Activated(self):
         from latticewb import api
-        links = []
+        from latticewb.kernel import face_field
+        links, faces = [], []
         for selection in FreeCADGui.Selection.getSelectionEx():
             names = [n for n in selection.SubElementNames if n.startswith("Vertex")]
+            faces.extend((selection.Object, n) for n in selection.SubElementNames if n.startswith("Face"))
             if names:
                 links.extend((selection.Object, n) for n in names)
-            else:
+            elif not selection.SubElementNames:
                 shape = getattr(selection.Object, "Shape", None)
                 if shape is not None and len(shape.Vertexes) == 1:  # a Draft point
                     links.append((selection.Object, ""))
-        if links and len(links) != 4:
-            FreeCAD.Console.PrintError("Curved lattice: select four vertices (A, B, C, D) or none (got %d)\n"
-                                       % len(links))
+        if len(faces) > 1:
+            FreeCAD.Console.PrintError("Curved lattice: select one face to lay it on (got %d)\n" % len(faces))
             return
+        face = faces[0] if faces else None
+        if face is not None and len(links) == 3:
+            links.insert(2, None)  # C is implied by the face's field (typed, unused on a curved face)
+        if links and len(links) != 4:
+            FreeCAD.Console.PrintError("Curved lattice: select four vertices (A, B, C, D), three with a face (A, B, "
+                                       "D), or none (got %d)\n" % len(links))
+            return
+        corners = None
+        if face is not None and not links:
+            corners = face_field.corners_on(face[0].Shape.getElement(face[1]))
         doc = FreeCAD.ActiveDocument
-        _create(doc, "New curved lattice", lambda: api.make_curved_lattice(doc, links=links or None))
+        _create(doc, "New curved lattice",
+                lambda: api.make_curved_lattice(doc, corners=corners, links=links or None, face=face))
         if FreeCADGui.ActiveDocument and FreeCADGui.ActiveDocument.ActiveView:
             FreeCADGui.SendMsgToActiveView("ViewFit")
 

@@ -51,6 +51,14 @@ def linked_face(obj):
     return face, "%s.%s" % (target.Label, subs[0])
 
 
+def corners_on(face):
+    """Corners A, B, C, D spread over a face (from 10 to 40 percent of its first parameter's range and 10 to 90 of
+    its second's): where a lattice laid on it starts before the designer moves them."""
+    u0, u1, v0, v1 = face.ParameterRange
+    at = [(0.1, 0.1), (0.1, 0.9), (0.4, 0.9), (0.4, 0.1)]
+    return [face.valueAt(u0 + s * (u1 - u0), v0 + t * (v1 - v0)) for s, t in at]
+
+
 def surface_kind(face, label):
     """'plane', 'cylinder' or 'cone'; ValueError naming FaceLink for any other surface."""
     name = type(face.Surface).__name__
