@@ -2,7 +2,8 @@
 its wall), without and with a skin, and a cone filled with stacked sheets rolled onto it. Each part: one valid solid;
 every kept hub whole inside the wall (the inner wall with a skin); one bridge per kept hub that lost a neighbour,
 toward its nearest wall point (checked against the body's closed form); the volume against Monte Carlo membership
-in the bridged lattice (brute force) inside the wall, plus the skin in closed form."""
+in the bridged lattice (brute force) inside the wall, plus the skin in closed form. Then rerouted bridges, on
+crowded lattices in a box where some nearest routes are blocked, checked by brute force."""
 import math
 import os
 
@@ -294,6 +295,9 @@ def test_rerouted_bridges_are_clear_and_end_on_the_wall(seed):
     bridges, kept = plan["bridges"], plan["kept"]
     routes = [br["route"] for br in bridges]
     assert routes == sorted(routes)  # the nearest ones first
+    again = lat.bridge_plan(text)["bridges"]  # deterministic
+    assert [(br["hub"], br["route"], tuple(br["wall"])) for br in again] == \
+        [(br["hub"], br["route"], tuple(br["wall"])) for br in bridges]
     assert routes.count("rerouted") > 0, "the case no longer exercises rerouting"
     hubs = [br["hub"] for br in bridges] + list(plan["blocked"])
     assert len(hubs) == len(set(hubs)) == plan["lost_neighbour_hubs"]
