@@ -198,20 +198,23 @@ def test_bridged_mesh_arguments_are_checked():
 BOX_LO, BOX_HI = np.full(3, -0.4), np.full(3, 2.6)  # box.brep
 
 
-def box_distance(p):
-    """Signed distance to the wall of box.brep (positive inside), in closed form."""
-    p = np.asarray(p, dtype=float)
-    inside = np.minimum(p - BOX_LO, BOX_HI - p).min(axis=-1)
-    outside = np.linalg.norm(np.maximum(0.0, np.maximum(BOX_LO - p, p - BOX_HI)), axis=-1)
+def box_distance(p, skin=0.0):
+    """Signed distance to the wall of box.brep (positive inside), or with a skin to its inner wall (the box shrunk
+    by the skin), in closed form."""
+    p, lo, hi = np.asarray(p, dtype=float), BOX_LO + skin, BOX_HI - skin
+    inside = np.minimum(p - lo, hi - p).min(axis=-1)
+    outside = np.linalg.norm(np.maximum(0.0, np.maximum(lo - p, p - hi)), axis=-1)
     return np.where(inside >= 0.0, inside, -outside)
 
 
-def box_nearest(p):
-    """The nearest wall point of box.brep to the inside point p, and the wall's outward normal there."""
-    gaps = np.concatenate([p - BOX_LO, BOX_HI - p])
+def box_nearest(p, skin=0.0):
+    """The nearest point of the wall of box.brep (shrunk by the skin) to the inside point p, and the wall's outward
+    normal there."""
+    lo, hi = BOX_LO + skin, BOX_HI - skin
+    gaps = np.concatenate([p - lo, hi - p])
     k = int(np.argmin(gaps))
     q, n = np.array(p, dtype=float), np.zeros(3)
-    q[k % 3] = BOX_LO[k % 3] if k < 3 else BOX_HI[k % 3]
+    q[k % 3] = lo[k % 3] if k < 3 else hi[k % 3]
     n[k % 3] = -1.0 if k < 3 else 1.0
     return q, n
 
@@ -282,20 +285,21 @@ def route_clearances(lat, kept, routes, bridges):
     return least
 
 
-@pytest.mark.parametrize("seed", range(4))
-def test_rerouted_bridges_are_clear_and_end_on_the_wall(seed):
-    """Turned crowded lattices in box.brep, where some routes to the nearest wall point are blocked: every bridge,
-    nearest or rerouted, is clear of every kept element of another hub and of every other bridge (by brute
-    force, independently of the kernel's capsule tests), starts at its hub, meets the wall (closed form, 1e-6) on the line
-    to its far node, whose ball lies outside the box; nearest ones end at the nearest point, rerouted ones are no
-    shorter, and their nearest route was not clear. Every hub that lost a neighbour is bridged once or blocked."""
+@pytest.mark.parametrize("seed, skin", [(0, 0.0), (1, 0.0), (2, 0.0), (3, 0.0), (0, 0.2)])
+def test_rerouted_bridges_are_clear_and_end_on_the_wall(seed, skin):
+    """Turned crowded lattices in box.brep (and one with a skin, bridged to its inner wall), where some routes to
+    the nearest wall point are blocked: every bridge, nearest or rerouted, is clear of every kept element of another
+    hub and of every other bridge (by brute force, independently of the kernel's capsule tests), starts at its hub,
+    meets the wall (closed form, 1e-6) on the line to its far node, whose ball lies outside the wall; nearest ones
+    end at the nearest point, rerouted ones are no shorter, and their nearest route was not clear. Every hub that
+    lost a neighbour is bridged once or blocked; the plan is the same when asked again."""
     lat, text = crowded_lattice(seed), body("box.brep")
-    plan = lat.bridge_plan(text)
+    plan = lat.bridge_plan(text, skin)
     centers, radii = lat.balls()
     bridges, kept = plan["bridges"], plan["kept"]
     routes = [br["route"] for br in bridges]
     assert routes == sorted(routes)  # the nearest ones first
-    again = lat.bridge_plan(text)["bridges"]  # deterministic
+    again = lat.bridge_plan(text, skin)["bridges"]
     assert [(br["hub"], br["route"], tuple(br["wall"])) for br in again] == \
         [(br["hub"], br["route"], tuple(br["wall"])) for br in bridges]
     assert routes.count("rerouted") > 0, "the case no longer exercises rerouting"
@@ -305,29 +309,30 @@ def test_rerouted_bridges_are_clear_and_end_on_the_wall(seed):
     assert np.all(route_clearances(lat, kept, [(br["hub"], br["end"], br["radius"]) for br in bridges], bridges) > 0)
     for br in bridges:
         c, wall, end, r = centers[br["hub"]], br["wall"], br["end"], br["radius"]
-        assert abs(box_distance(wall)) < 1e-6
+        assert abs(box_distance(wall, skin)) < 1e-6
         assert np.linalg.norm(np.cross(wall - c, end - c)) < 1e-9 * np.linalg.norm(end - c) ** 2 + 1e-12
-        assert box_distance(end) <= -r + 1e-9  # the far node's ball clear of the box
+        assert box_distance(end, skin) <= -r + 1e-9  # the far node's ball clear of the wall
         if br["route"] == "nearest":
-            assert abs(np.linalg.norm(wall - c) - box_distance(c)) < 1e-6
+            assert abs(np.linalg.norm(wall - c) - box_distance(c, skin)) < 1e-6
         else:
-            assert np.linalg.norm(wall - c) >= box_distance(c) - 1e-9
+            assert np.linalg.norm(wall - c) >= box_distance(c, skin) - 1e-9
             # its nearest route met a kept element or a nearest bridge of a hub before it
-            q, n = box_nearest(c)
+            q, n = box_nearest(c, skin)
             earlier = [other for other in nearest_made if other["hub"] < br["hub"]]
             assert route_clearances(lat, kept, [(br["hub"], q + 1.5 * r * n, r)], earlier)[0] < 1e-9
 
 
-def test_rerouted_bridges_make_one_valid_solid():
-    """The first crowded lattice trimmed with its rerouted bridges: one valid solid with the plan's counts, whose
-    volume agrees with Monte Carlo membership in the bridged lattice inside the box; the mesh path reports the
-    same counts."""
+@pytest.mark.parametrize("skin", [0.0, 0.2], ids=["no skin", "skin 0.2"])
+def test_rerouted_bridges_make_one_valid_solid(skin):
+    """The first crowded lattice trimmed with its rerouted bridges, without and with a skin: one valid solid with
+    the plan's counts, whose volume agrees with Monte Carlo membership in the bridged lattice inside the (inner)
+    wall, plus the skin in closed form; without a skin the mesh path reports the same counts."""
     lat, text = crowded_lattice(0), body("box.brep")
     stats, messages = {}, []
-    props = sl.brep_properties(lat.brep(text, "bridge", stats=stats, log=messages.append))
+    props = sl.brep_properties(lat.brep(text, "bridge", skin=skin, stats=stats, log=messages.append))
     assert props["valid"], props["report"]
     assert props["solids"] == 1
-    plan = lat.bridge_plan(text)
+    plan = lat.bridge_plan(text, skin)
     rerouted = sum(br["route"] == "rerouted" for br in plan["bridges"])
     assert stats["rerouted_bridges"] == rerouted > 0
     assert stats["bridges"] == len(plan["bridges"]) and stats["blocked_bridges"] == len(plan["blocked"]) == 0
@@ -335,10 +340,16 @@ def test_rerouted_bridges_make_one_valid_solid():
     rng = np.random.default_rng(18)
     samples = 200000
     points = rng.uniform(BOX_LO, BOX_HI, size=(samples, 3))
+    points = points[box_distance(points, skin) >= 0.0]
     box = float(np.prod(BOX_HI - BOX_LO))
     p = inside_lattice(points, Bridged(plan)).sum() / samples
-    estimate, sigma = box * p, box * math.sqrt(p * (1 - p) / samples)
+    estimate = box * p + box - float(np.prod(BOX_HI - BOX_LO - 2 * skin))
+    sigma = box * math.sqrt(p * (1 - p) / samples)
     assert abs(props["volume"] - estimate) < 4 * sigma, (props["volume"], estimate, sigma)
+    print("skin %g: %d bridges, %d rerouted, volume %.5f, Monte Carlo %.5f +- %.5f"
+          % (skin, stats["bridges"], rerouted, props["volume"], estimate, sigma))
+    if skin:
+        return
     vertices = np.array([[x, y, z] for x in (-0.4, 2.6) for y in (-0.4, 2.6) for z in (-0.4, 2.6)])
     triangles = np.array([[0, 1, 3], [0, 3, 2], [4, 6, 7], [4, 7, 5], [0, 4, 5], [0, 5, 1], [2, 3, 7], [2, 7, 6],
                           [0, 2, 6], [0, 6, 4], [1, 5, 7], [1, 7, 3]])
