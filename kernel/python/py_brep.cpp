@@ -111,6 +111,7 @@ void fill_stats(const steady::TrimStats& s, py::dict& d) {
   d["kept_hubs"] = s.kept_hubs;
   d["lost_neighbour_hubs"] = s.lost_neighbour_hubs;
   d["bridges"] = s.bridges;
+  d["rerouted_bridges"] = s.rerouted_bridges;
   d["blocked_bridges"] = s.blocked_bridges;
   d["ambiguous_bridges"] = s.ambiguous_bridges;
   d["faces"] = s.faces;
@@ -141,7 +142,8 @@ py::dict bridge_plan_dict(const Lattice& lat, const std::string& body, double sk
   for (const steady::Bridge& br : plan.bridges)
     bridges.append(py::dict(py::arg("hub") = br.hub, py::arg("wall") = vec3_array(br.wall),
                             py::arg("end") = vec3_array(br.end), py::arg("radius") = br.radius,
-                            py::arg("ambiguous") = br.ambiguous));
+                            py::arg("ambiguous") = br.ambiguous,
+                            py::arg("route") = br.rerouted ? "rerouted" : "nearest"));
   py::dict d;
   d["balls"] = py::make_tuple(centers, radii);
   d["beams"] = py::make_tuple(a, b, ra, rb);
@@ -204,7 +206,8 @@ void bind_brep(py::module_& m) {
       "BREP text of the lattice as one solid (a compound of solids when it has several components). body: BREP "
       "text of a solid (Part.Shape.exportBrepToString()) to trim into; policy: 'clip' (cut at the boundary) or "
       "'whole' (keep only hubs entirely inside, never cut) or 'bridge' (the hubs 'whole' keeps, and from each that "
-      "lost a neighbour a bridge beam to the nearest point of the wall, cut there; dangling does not apply); skin: wall thickness of a skin united with the "
+      "lost a neighbour a bridge beam to the nearest point of the wall, or by another route when that one is "
+      "blocked, cut there; dangling does not apply); skin: wall thickness of a skin united with the "
       "lattice; dangling: 'keep' or 'remove' beams joining a kept hub to a dropped one. progress: None or a "
       "callable progress(fraction) called on this thread about every 0.1 s with a growing fraction in [0, 1] "
       "(1 at the end); returning False cancels: steadylattice.Cancelled is raised soon after (an exception the "
@@ -213,8 +216,9 @@ void bind_brep(py::module_& m) {
       "to keep clusters apart), retried_clusters and of those "
       "relaid_/turned_/fuzzy_clusters (fuzzy: clipped with a tolerance of 1e-4 to 1e-3 of the cluster's size, "
       "exact only to that), holed_clusters (glued to the skin with no Boolean), rim_clusters (on the inner boundary's edges and seams: united with the skin by one Cut) and of those rim_clusters_unclipped (found before their Common), relaid_out and union_through_pores "
-      "with their reasons, with 'bridge' kept_hubs, lost_neighbour_hubs, bridges, blocked_bridges (refused: they would "
-      "meet another kept element) and ambiguous_bridges (several nearest points), faces, volume (adaptive integration: FreeCAD's Shape.Volume can be 1e-3 off on crowded spheres), boolean_seconds, union_seconds. log: None or a callable log(message) receiving "
+      "with their reasons, with 'bridge' kept_hubs, lost_neighbour_hubs, bridges, rerouted_bridges (of bridges, those "
+      "whose route to the nearest wall point was blocked and took another), blocked_bridges (refused: on every route "
+      "tried they would meet another kept element) and ambiguous_bridges (several nearest points), faces, volume (adaptive integration: FreeCAD's Shape.Volume can be 1e-3 off on crowded spheres), boolean_seconds, union_seconds. log: None or a callable log(message) receiving "
       "the trim's diagnostics as they happen (build times, failed attempts, a union through the pores). dump_dir: "
       "a folder where a boundary cluster that fails every attempt is written as BREP, for study.");
   lattice.def(
@@ -223,8 +227,10 @@ void bind_brep(py::module_& m) {
       py::arg("body"), py::arg("skin") = 0.0,
       "What brep(body, 'bridge', skin) trims with policy 'clip': {balls: (centers, radii), beams: (a, b, ra, rb)} of "
       "the bridged lattice (the kept hubs first, then one far node per bridge; the beams between kept hubs, then the "
-      "bridges), kept (the source ball of each kept hub), bridges [{hub, wall, end, radius, ambiguous}], blocked "
-      "(hubs refused a bridge), lost_neighbour_hubs. For checks and pictures (docs/cots.md).");
+      "bridges), kept (the source ball of each kept hub), bridges [{hub, wall, end, radius, ambiguous, route}] "
+      "(route: 'nearest', or 'rerouted' when the nearest point's route was blocked and `wall` is where another route "
+      "meets the wall; the nearest ones first), blocked (hubs with no clear route to the wall), lost_neighbour_hubs. "
+      "For checks and pictures (docs/cots.md).");
   lattice.def(
       "write_step",
       [](const Lattice& lat, const std::string& path, const py::object& body, const std::string& policy, double skin,

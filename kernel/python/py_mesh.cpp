@@ -4,6 +4,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cstring>
 
 #include "convert.hpp"
@@ -107,6 +108,8 @@ steady::FlatLattice mesh_lattice(const Lattice& lat, const MeshPolicy& m, const 
   stats["kept_hubs"] = static_cast<std::int64_t>(plan.kept.size());
   stats["lost_neighbour_hubs"] = plan.lost_neighbour_hubs;
   stats["bridges"] = static_cast<std::int64_t>(plan.bridges.size());
+  stats["rerouted_bridges"] = static_cast<std::int64_t>(
+      std::count_if(plan.bridges.begin(), plan.bridges.end(), [](const steady::Bridge& b) { return b.rerouted; }));
   stats["blocked_bridges"] = static_cast<std::int64_t>(plan.blocked.size());
   return plan.lattice;
 }
@@ -162,8 +165,9 @@ steady::TriangleMesh lattice_mesh_of(const Lattice& lat, double tolerance, const
     "Boolean (CGAL's corefinement). inner: with a body, None or the mesh of the body's inner offset: the skin " \
     "between the two is united with the lattice, which is trimmed to the inner surface. policy: 'clip', or " \
     "'bridge' (as for brep(): hubs whole inside kept, each that lost a neighbour bridged to the nearest wall " \
-    "point, the body's mesh cutting only bridges; needs brep=, the body's BREP text, and skin=, the thickness " \
-    "whose inner surface `inner` is; stats get kept_hubs, lost_neighbour_hubs, bridges, blocked_bridges)."
+    "point (or by another route when that one is blocked), the body's mesh cutting only bridges; needs brep=, the " \
+    "body's BREP text, and skin=, the thickness whose inner surface `inner` is; stats get kept_hubs, " \
+    "lost_neighbour_hubs, bridges, rerouted_bridges, blocked_bridges)."
 
 }  // namespace
 

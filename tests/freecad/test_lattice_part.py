@@ -118,6 +118,37 @@ class LatticePartTest(unittest.TestCase):
         with self.assertRaises(ValueError):
             api.make_part(self.doc, self.lattice, self.body, policy="nearest")
 
+    def test_report_names_rerouted_and_blocked_bridges(self):
+        """The report view after a 'bridge' trim (the kernel's stats of a turned, crowded cubic lattice with face
+        and body diagonals in a box, where some routes to the nearest wall point are blocked): the rerouted
+        bridges as a message; blocked ones, when there are, as a warning."""
+        from latticewb.objects import lattice_part
+        turn, _ = np.linalg.qr(np.random.default_rng(0).normal(size=(3, 3)))
+        r, t = 0.05, sl.Similarity.translation
+        beams = [(0, 1, 0, 0, 0, r, r), (0, 0, 1, 0, 0, r, r), (0, 0, 0, 1, 0, r, r), (0, 1, 1, 0, 0, r, r),
+                 (0, 0, 1, 1, 0, r, r), (0, 1, 0, 1, 0, r, r), (0, 1, 1, 1, 0, r, r)]
+        origin = np.full(3, 1.1) - turn @ np.full(3, 2.0)
+        lat = sl.Lattice([(tuple(origin), 0.14)], beams, (9, 9, 9), *(t(tuple(0.5 * turn[:, k])) for k in range(3)))
+        box = Part.makeBox(3.0, 3.0, 3.0, FreeCAD.Vector(-0.4, -0.4, -0.4)).exportBrepToString()
+        plan = lat.bridge_plan(box)
+        stats = {}
+        lat.brep(box, "bridge", stats=stats)
+        rerouted = sum(b["route"] == "rerouted" for b in plan["bridges"])
+        self.assertGreater(rerouted, 0)
+        self.assertEqual(stats["rerouted_bridges"], rerouted)
+        messages, warnings = [], []
+        saved = FreeCAD.Console.PrintMessage, FreeCAD.Console.PrintWarning
+        FreeCAD.Console.PrintMessage, FreeCAD.Console.PrintWarning = messages.append, warnings.append
+        try:
+            lattice_part.report_trim("Part", stats)
+            lattice_part.report_trim("Part", dict(stats, blocked_bridges=2))
+        finally:
+            FreeCAD.Console.PrintMessage, FreeCAD.Console.PrintWarning = saved
+        expected = "Part: %d of %d bridges took another route to the wall" % (rerouted, stats["bridges"])
+        self.assertEqual(sum(m.startswith(expected) for m in messages), 2, messages)
+        self.assertEqual(len([w for w in warnings if "got no bridge" in w]), 1, warnings)
+        self.assertIn("2 of %d hubs that lost a neighbour got no bridge" % stats["lost_neighbour_hubs"], warnings[-1])
+
     def test_save_reload_and_step_assembly(self):
         part = api.make_part(self.doc, self.lattice, self.body, skin=1.5)
         self.doc.recompute()

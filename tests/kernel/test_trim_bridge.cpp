@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <random>
 #include <set>
 
@@ -109,6 +110,7 @@ void check_bridged(const FlatLattice& f, const Body& body, double skin, const st
     EXPECT_NEAR(glm::length(b.wall - c), body.distance(c, skin), 1e-6) << what << ": bridge of hub " << b.hub;
     EXPECT_NEAR(body.distance(b.wall, skin), 0.0, 1e-6) << what << ": its wall point";
     EXPECT_EQ(b.radius, lost[b.hub]) << what;
+    EXPECT_FALSE(b.rerouted) << what;
   }
   EXPECT_EQ(static_cast<std::int64_t>(bridged.size()), lost_hubs) << what << ": a hub bridged twice";
 
@@ -122,6 +124,7 @@ void check_bridged(const FlatLattice& f, const Body& body, double skin, const st
   EXPECT_EQ(r.stats.lost_neighbour_hubs, lost_hubs) << what;
   EXPECT_EQ(r.stats.kept_hubs, static_cast<std::int64_t>(plan.kept.size())) << what;
   EXPECT_EQ(r.stats.blocked_bridges, 0) << what;
+  EXPECT_EQ(r.stats.rerouted_bridges, 0) << what;
   // No kept hub is cut: its center and six points at 0.95 of its radius lie inside the part.
   for (std::int64_t i : plan.kept) {
     const Ball& ball = f.balls[i];
@@ -163,25 +166,195 @@ TEST(TrimBridge, StrutGridInCylinderWithSkinAgreesWithMonteCarlo) {
   check_bridged(grid_lattice(6), cylinder(), 0.3, "grid in cylinder, skin 0.3");
 }
 
-// Hub A keeps a beam to hub K and loses one to X outside the box; its nearest wall point lies beyond K, so its
-// bridge would run through K's ball: refused, reported, and the part is still A and K whole.
-TEST(TrimBridge, ABridgeThroughAnotherHubIsRefusedAndReported) {
+// A box described independently of OpenCASCADE: the signed distance from a point to its wall (positive inside).
+struct TestBox {
+  Vec3 lo, hi;
+  TopoDS_Shape shape() const {
+    return BRepPrimAPI_MakeBox(gp_Pnt(lo.x, lo.y, lo.z), gp_Pnt(hi.x, hi.y, hi.z)).Shape();
+  }
+  double distance(const Vec3& p) const {
+    double inside = std::numeric_limits<double>::infinity(), outside = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      inside = std::min({inside, p[k] - lo[k], hi[k] - p[k]});
+      const double out = std::max({0.0, lo[k] - p[k], p[k] - hi[k]});
+      outside += out * out;
+    }
+    return inside >= 0.0 ? inside : -std::sqrt(outside);
+  }
+};
+
+// The least clearance between `bridge` (its axis from its hub's node to its far node, radius r) and the kept
+// elements of `f` not of its hub, by brute force: both axes sampled at 400 points, each element point with its
+// own radius (a beam's linearly interpolated: the hull of its end balls lies inside that union of balls), minus
+// the sampling steps (so the result is a lower bound of the true clearance).
+double brute_force_clearance(const FlatLattice& f, const std::vector<std::int64_t>& kept, const Bridge& bridge) {
+  const int n = 400;
+  const std::set<std::int64_t> is_kept(kept.begin(), kept.end());
+  const Vec3 from = f.balls[bridge.hub].center;
+  const double bridge_step = glm::length(bridge.end - from) / (n - 1);
+  auto clearance_to = [&](const Vec3& a, const Vec3& b, double ra, double rb) {
+    const double step = glm::length(b - a) / (n - 1) + std::abs(rb - ra) / (n - 1);
+    double least = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < n; ++i) {
+      const Vec3 p = from + (bridge.end - from) * (double(i) / (n - 1));
+      for (int j = 0; j < n; ++j) {
+        const double t = double(j) / (n - 1);
+        least = std::min(least, glm::length(p - (a + (b - a) * t)) - (ra + (rb - ra) * t) - bridge.radius);
+      }
+    }
+    return least - bridge_step - step;
+  };
+  double least = std::numeric_limits<double>::infinity();
+  for (std::int64_t k : kept)
+    if (k != bridge.hub)
+      least = std::min(least, clearance_to(f.balls[k].center, f.balls[k].center, f.balls[k].radius,
+                                           f.balls[k].radius));
+  for (const FlatBeam& b : f.beams)
+    if (is_kept.count(b.a) && is_kept.count(b.b) && b.a != bridge.hub && b.b != bridge.hub)
+      least = std::min(least, clearance_to(f.balls[b.a].center, f.balls[b.b].center, b.ra, b.rb));
+  return least;
+}
+
+// Monte Carlo volume of the bridged lattice inside `box`, sampled in [lo, hi]: estimate and sigma.
+std::pair<double, double> box_monte_carlo(const FlatLattice& bridged, const TestBox& box, const Vec3& lo,
+                                          const Vec3& hi, int samples) {
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> ux(lo.x, hi.x), uy(lo.y, hi.y), uz(lo.z, hi.z);
+  int hits = 0;
+  for (int k = 0; k < samples; ++k) {
+    const Vec3 p(ux(rng), uy(rng), uz(rng));
+    hits += box.distance(p) >= 0.0 && test::in_lattice(bridged, p);
+  }
+  const Vec3 e = hi - lo;
+  const double box_volume = e.x * e.y * e.z, frac = double(hits) / samples;
+  return {frac * box_volume, std::sqrt(frac * (1 - frac) / samples) * box_volume};
+}
+
+// Hub A keeps a beam to hub K and loses one to X outside the box; its nearest wall point (1, 0, 0) lies beyond
+// K, so that bridge would run through K's ball. It is rerouted: the rings at 10 and 20 degrees about +x still pass
+// too close to K (0.6 sin 20 < 0.15 + 0.1), the first direction of the 30-degree ring is clear and shorter than
+// the lost beam's route (3, down to z = -3). The bridge is checked by brute force against every kept element,
+// ends on the wall, and the part is one valid solid with A and K whole, of the Monte Carlo volume.
+TEST(TrimBridge, ABridgeThroughAnotherHubIsRerouted) {
   const FlatLattice f = make_flat_lattice({{{0, 0, 0}, 0.2}, {{0.6, 0, 0}, 0.15}, {{0, 0, -3.5}, 0.2}},
                                           {{0, 1, 0.08, 0.08}, {0, 2, 0.1, 0.1}});
-  const TopoDS_Shape box = BRepPrimAPI_MakeBox(gp_Pnt(-1.2, -2, -3), gp_Pnt(1, 2, 3)).Shape();
+  const TestBox box{{-1.2, -2, -3}, {1, 2, 3}};
+  const BridgePlan plan = plan_bridges(f, box.shape(), 0.0);
+  EXPECT_EQ(plan.kept, (std::vector<std::int64_t>{0, 1}));
+  EXPECT_TRUE(plan.blocked.empty());
+  ASSERT_EQ(plan.bridges.size(), 1u);
+  const Bridge& b = plan.bridges[0];
+  EXPECT_EQ(b.hub, 0);
+  EXPECT_TRUE(b.rerouted);
+  EXPECT_FALSE(b.ambiguous);
+  EXPECT_EQ(b.radius, 0.1);
+  // Its route: the first of the 30-degree ring, (cos 30, 0, sin 30), to the wall x = 1.
+  EXPECT_NEAR(glm::length(b.wall), 1.0 / std::cos(kPi / 6), 1e-9);
+  EXPECT_NEAR(b.wall.z / b.wall.x, std::tan(kPi / 6), 1e-9);
+  EXPECT_NEAR(box.distance(b.wall), 0.0, 1e-6) << "the wall point is on the wall";
+  // Its far node is past the wall along the same line, its ball clear of the box.
+  EXPECT_NEAR(glm::length(glm::cross(b.wall, b.end)), 0.0, 1e-9);
+  EXPECT_LE(box.distance(b.end), -b.radius);
+  // Clear of every kept element but its own hub's, by brute force; the nearest route was not.
+  EXPECT_GT(brute_force_clearance(f, plan.kept, b), 0.0);
+  Bridge nearest = b;
+  nearest.end = Vec3(1.0 + 1.5 * b.radius, 0, 0);
+  EXPECT_LT(brute_force_clearance(f, plan.kept, nearest), 0.0);
+
   TrimOptions o;
   o.policy = TrimPolicy::Bridge;
   std::vector<std::string> messages;
   o.report = [&](const std::string& m) { messages.push_back(m); };
-  const TrimResult r = trim_lattice(f, box, o);
+  const TrimResult r = trim_lattice(f, box.shape(), o);
   EXPECT_TRUE(is_valid(r.part)) << validity_report(r.part);
   EXPECT_EQ(solid_count(r.part), 1);
   EXPECT_EQ(r.stats.kept_hubs, 2);
   EXPECT_EQ(r.stats.lost_neighbour_hubs, 1);
-  EXPECT_EQ(r.stats.blocked_bridges, 1);
+  EXPECT_EQ(r.stats.bridges, 1);
+  EXPECT_EQ(r.stats.rerouted_bridges, 1);
+  EXPECT_EQ(r.stats.blocked_bridges, 0);
+  EXPECT_TRUE(std::any_of(messages.begin(), messages.end(), [](const std::string& m) {
+    return m.find("bridge from hub 0 rerouted") != std::string::npos;
+  }));
+  for (std::int64_t i : plan.kept) EXPECT_TRUE(part_contains(r.part, f.balls[i].center)) << "hub " << i;
+  const auto [estimate, sigma] = box_monte_carlo(plan.lattice, box, {-0.3, -0.3, -0.3}, {1.0, 0.3, 1.0}, 200000);
+  const double volume = shape_volume(r.part);
+  EXPECT_NEAR(volume, estimate, 4 * sigma);
+  std::printf("[ bridge   ] rerouted: wall point (%.4f, %.4f, %.4f), volume %.5f, Monte Carlo %.5f +- %.5f\n",
+              b.wall.x, b.wall.y, b.wall.z, volume, estimate, sigma);
+}
+
+// Hub A in a cage of kept hubs: the 26 points of the cube of side 1 about it (balls 0.15), every two adjacent
+// ones joined (beams 0.08), the six on the axes joined to A. A loses a beam of radius 0.15 to X below the box
+// (whose nearest wall, z = -1.5, lies 1.5 from A), so its bridge (radius 0.15) fits through no gap of the cage:
+// checked here by sampling 2,000 directions.
+// Every route is blocked: the bridge is not made, counted and named, and the part is the cage and A, whole.
+TEST(TrimBridge, AHubBoxedInByKeptHubsStaysBlocked) {
+  std::vector<Ball> balls{{{0, 0, 0}, 0.2}};
+  std::vector<FlatBeam> beams;
+  std::vector<Vec3> grid{{0, 0, 0}};
+  for (int i = -1; i <= 1; ++i)
+    for (int j = -1; j <= 1; ++j)
+      for (int k = -1; k <= 1; ++k)
+        if (i || j || k) {
+          grid.emplace_back(i, j, k);
+          balls.push_back({Vec3(i, j, k) * 0.5, 0.15});
+          if (std::abs(i) + std::abs(j) + std::abs(k) == 1)
+            beams.push_back({0, std::int64_t(balls.size() - 1), 0.06, 0.06});
+        }
+  for (std::size_t a = 1; a < grid.size(); ++a)
+    for (std::size_t c = a + 1; c < grid.size(); ++c) {
+      const Vec3 d = glm::abs(grid[a] - grid[c]);
+      if (d.x + d.y + d.z == 1.0) beams.push_back({std::int64_t(a), std::int64_t(c), 0.08, 0.08});
+    }
+  balls.push_back({{0.9, 0.9, -1.8}, 0.2});
+  beams.push_back({0, std::int64_t(balls.size() - 1), 0.15, 0.15});
+  const FlatLattice f = make_flat_lattice(balls, beams);
+  const TestBox box{{-2, -2, -1.5}, {2, 2, 3}};
+  const BridgePlan plan = plan_bridges(f, box.shape(), 0.0);
+  EXPECT_EQ(plan.kept.size(), 27u);
+  EXPECT_EQ(plan.lost_neighbour_hubs, 1);
+  EXPECT_TRUE(plan.bridges.empty());
+  EXPECT_EQ(plan.blocked, (std::vector<std::int64_t>{0}));
+  // No route from A to the wall is clear, whatever the direction: every bridge through the cage meets it.
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> normal;
+  for (int k = 0; k < 2000; ++k) {
+    // The bridge's first unit of length (the cage's farthest point lies 0.87 + 0.15 from A, the wall farther),
+    // sampled with the cage's balls and beams: a sampled overlap is a true one.
+    const Vec3 u = glm::normalize(Vec3(normal(rng), normal(rng), normal(rng)));
+    double least = std::numeric_limits<double>::infinity();
+    for (int s = 0; s <= 60; ++s) {
+      const Vec3 p = u * (s / 60.0);
+      for (std::int64_t i = 1; i < f.ball_count() - 1; ++i)
+        least = std::min(least, glm::length(f.balls[i].center - p) - f.balls[i].radius - 0.15);
+      for (const FlatBeam& b : beams)
+        if (b.a != 0)
+          for (int t = 0; t <= 30; ++t) {
+            const Vec3 q = f.balls[b.a].center + (f.balls[b.b].center - f.balls[b.a].center) * (t / 30.0);
+            least = std::min(least, glm::length(q - p) - b.ra - 0.15);
+          }
+    }
+    ASSERT_LT(least, 0.0) << "a free direction: " << u.x << " " << u.y << " " << u.z;
+  }
+
+  TrimOptions o;
+  o.policy = TrimPolicy::Bridge;
+  std::vector<std::string> messages;
+  o.report = [&](const std::string& m) { messages.push_back(m); };
+  const TrimResult r = trim_lattice(f, box.shape(), o);
+  EXPECT_TRUE(is_valid(r.part)) << validity_report(r.part);
+  EXPECT_EQ(solid_count(r.part), 1);
+  EXPECT_EQ(r.stats.kept_hubs, 27);
   EXPECT_EQ(r.stats.bridges, 0);
+  EXPECT_EQ(r.stats.rerouted_bridges, 0);
+  EXPECT_EQ(r.stats.blocked_bridges, 1);
   EXPECT_TRUE(std::any_of(messages.begin(), messages.end(),
                           [](const std::string& m) { return m.find("no bridge from hub 0") != std::string::npos; }));
+  const auto [estimate, sigma] = box_monte_carlo(plan.lattice, box, Vec3(-0.7), Vec3(0.7), 100000);
+  const double volume = shape_volume(r.part);
+  EXPECT_NEAR(volume, estimate, 4 * sigma);
+  std::printf("[ bridge   ] boxed in: volume %.5f, Monte Carlo %.5f +- %.5f\n", volume, estimate, sigma);
 }
 
 // A hub on a cylinder's axis has a circle of nearest points: one is taken, the bridge counted as ambiguous, and

@@ -2,7 +2,8 @@
 its wall), without and with a skin, and a cone filled with stacked sheets rolled onto it. Each part: one valid solid;
 every kept hub whole inside the wall (the inner wall with a skin); one bridge per kept hub that lost a neighbour,
 toward its nearest wall point (checked against the body's closed form); the volume against Monte Carlo membership
-in the bridged lattice (brute force) inside the wall, plus the skin in closed form."""
+in the bridged lattice (brute force) inside the wall, plus the skin in closed form. Then rerouted bridges, on
+crowded lattices in a box where some nearest routes are blocked, checked by brute force."""
 import math
 import os
 
@@ -10,7 +11,7 @@ import numpy as np
 import pytest
 
 import steadylattice as sl
-from brute_force import inside_lattice
+from brute_force import hull_gap, inside_lattice
 
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data")
 
@@ -95,6 +96,7 @@ def test_conformal_fill_with_bridges(shape, skin):
     assert sorted(br["hub"] for br in plan["bridges"]) == sorted(lost)
     assert plan["blocked"] == [] and stats["blocked_bridges"] == 0
     assert stats["bridges"] == len(lost) and stats["kept_hubs"] == len(kept)
+    assert stats["rerouted_bridges"] == 0 and all(br["route"] == "nearest" for br in plan["bridges"])
     for br in plan["bridges"]:
         c = centers[br["hub"]]
         assert abs(wall_distance(br["wall"])) < 1e-6  # on the wall
@@ -160,6 +162,7 @@ def test_bridged_mesh_is_closed_with_the_bridged_volume():
     plan = lat.bridge_plan(text)
     assert stats["bridges"] == stats["lost_neighbour_hubs"] == len(plan["bridges"]) > 0
     assert stats["blocked_bridges"] == 0 and stats["kept_hubs"] == len(plan["kept"])
+    assert stats["rerouted_bridges"] == 0
     volume, area = volume_and_area(vertices, triangles)
     rng = np.random.default_rng(16)
     samples = 200000
@@ -188,3 +191,168 @@ def test_bridged_mesh_arguments_are_checked():
         lat.to_mesh(0.01, policy="bridge", brep=text)
     with pytest.raises(ValueError, match="skin"):
         lat.to_mesh(0.01, body=prism(), policy="bridge", brep=text, skin=0.5)
+
+
+# ---- rerouted bridges ---------------------------------------------------------------------------------------------
+
+BOX_LO, BOX_HI = np.full(3, -0.4), np.full(3, 2.6)  # box.brep
+
+
+def box_distance(p, skin=0.0):
+    """Signed distance to the wall of box.brep (positive inside), or with a skin to its inner wall (the box shrunk
+    by the skin), in closed form."""
+    p, lo, hi = np.asarray(p, dtype=float), BOX_LO + skin, BOX_HI - skin
+    inside = np.minimum(p - lo, hi - p).min(axis=-1)
+    outside = np.linalg.norm(np.maximum(0.0, np.maximum(lo - p, p - hi)), axis=-1)
+    return np.where(inside >= 0.0, inside, -outside)
+
+
+def box_nearest(p, skin=0.0):
+    """The nearest point of the wall of box.brep (shrunk by the skin) to the inside point p, and the wall's outward
+    normal there."""
+    lo, hi = BOX_LO + skin, BOX_HI - skin
+    gaps = np.concatenate([p - lo, hi - p])
+    k = int(np.argmin(gaps))
+    q, n = np.array(p, dtype=float), np.zeros(3)
+    q[k % 3] = lo[k % 3] if k < 3 else hi[k % 3]
+    n[k % 3] = -1.0 if k < 3 else 1.0
+    return q, n
+
+
+def crowded_lattice(seed):
+    """A cubic lattice of spacing 0.5 with face and body diagonals (beams 0.05, nodes 0.14), turned at random and
+    centred in box.brep: routes to the nearest wall point often pass a kept neighbour."""
+    rng = np.random.default_rng(seed)
+    turn, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+    step, n, r = 0.5, 9, 0.05
+    origin = np.full(3, 1.1) - turn @ np.full(3, step * (n - 1) / 2) + rng.uniform(-0.2, 0.2, 3)
+    beams = [(0, 1, 0, 0, 0, r, r), (0, 0, 1, 0, 0, r, r), (0, 0, 0, 1, 0, r, r), (0, 1, 1, 0, 0, r, r),
+             (0, 0, 1, 1, 0, r, r), (0, 1, 0, 1, 0, r, r), (0, 1, 1, 1, 0, r, r)]
+    t = sl.Similarity.translation
+    return sl.Lattice([(tuple(origin), 0.14)], beams, (n, n, n), *(t(tuple(step * turn[:, k])) for k in range(3)))
+
+
+def route_gaps(c, end, radius, e0, e1, r0, r1):
+    """The least gaps between capsules on [c, end] of radius `radius` and the hulls of the balls (e0, r0),
+    (e1, r1) (M pairs; a ball when e0 = e1), negative where they overlap: the hull's signed gap (hull_gap) from the
+    axis point c + s (end - c), less the radius, is convex in s; sampled, then a ternary search in the bracket
+    about the least sample."""
+    def gap(s):
+        return hull_gap(c + s[..., None] * (end - c), e0, r0, e1, r1, iterations=40) - radius
+
+    samples = np.linspace(0.0, 1.0, 33)
+    g = gap(np.repeat(samples[:, None], len(e0), axis=1))  # (33, M)
+    i = np.argmin(g, axis=0)
+    lo, hi = samples[np.maximum(i - 1, 0)], samples[np.minimum(i + 1, len(samples) - 1)]
+    for _ in range(40):
+        m1, m2 = lo + (hi - lo) / 3, hi - (hi - lo) / 3
+        left = gap(m1) < gap(m2)
+        lo, hi = np.where(left, lo, m1), np.where(left, m2, hi)
+    return np.minimum(g.min(axis=0), gap(0.5 * (lo + hi)))
+
+
+def route_clearances(lat, kept, routes, bridges):
+    """For each route (hub, far node, radius) from its hub's node, the least gap to every kept element not of that
+    hub and every bridge in `bridges` of another hub, by brute force (inf when none is near); elements farther than
+    the route's half length plus their own from its midpoint are skipped (they cannot come nearer than that)."""
+    centers, radii = lat.balls()
+    a, b, ra, rb = lat.beams()
+    is_kept = np.zeros(lat.ball_count, dtype=bool)
+    is_kept[kept] = True
+    beams = is_kept[a] & is_kept[b]
+    e0 = np.vstack([centers[kept], centers[a[beams]], np.reshape([centers[br["hub"]] for br in bridges], (-1, 3))])
+    e1 = np.vstack([centers[kept], centers[b[beams]], np.reshape([br["end"] for br in bridges], (-1, 3))])
+    r0 = np.concatenate([radii[kept], ra[beams], [br["radius"] for br in bridges]])
+    r1 = np.concatenate([radii[kept], rb[beams], [br["radius"] for br in bridges]])
+    hub_a = np.concatenate([kept, a[beams], [br["hub"] for br in bridges]])
+    hub_b = np.concatenate([kept, b[beams], [br["hub"] for br in bridges]])
+    pairs, cs, ends, rs = [], [], [], []
+    for k, (hub, end, radius) in enumerate(routes):
+        c = centers[hub]
+        mid, half = 0.5 * (c + end), 0.5 * np.linalg.norm(end - c)
+        near = (np.linalg.norm(0.5 * (e0 + e1) - mid, axis=1) - half - 0.5 * np.linalg.norm(e1 - e0, axis=1) -
+                radius - np.maximum(r0, r1) <= 0.0) & (hub_a != hub) & (hub_b != hub)
+        for j in np.nonzero(near)[0]:
+            pairs.append((k, j))
+            cs.append(c)
+            ends.append(end)
+            rs.append(radius)
+    least = np.full(len(routes), np.inf)
+    if pairs:
+        k, j = np.array(pairs).T
+        gaps = route_gaps(np.array(cs), np.array(ends), np.array(rs), e0[j], e1[j], r0[j], r1[j])
+        np.minimum.at(least, k, gaps)
+    return least
+
+
+@pytest.mark.parametrize("seed, skin", [(0, 0.0), (1, 0.0), (2, 0.0), (3, 0.0), (0, 0.2)])
+def test_rerouted_bridges_are_clear_and_end_on_the_wall(seed, skin):
+    """Turned crowded lattices in box.brep (and one with a skin, bridged to its inner wall), where some routes to
+    the nearest wall point are blocked: every bridge, nearest or rerouted, is clear of every kept element of another
+    hub and of every other bridge (by brute force, independently of the kernel's capsule tests), starts at its hub,
+    meets the wall (closed form, 1e-6) on the line to its far node, whose ball lies outside the wall; nearest ones
+    end at the nearest point, rerouted ones are no shorter, and their nearest route was not clear. Every hub that
+    lost a neighbour is bridged once or blocked; the plan is the same when asked again."""
+    lat, text = crowded_lattice(seed), body("box.brep")
+    plan = lat.bridge_plan(text, skin)
+    centers, radii = lat.balls()
+    bridges, kept = plan["bridges"], plan["kept"]
+    routes = [br["route"] for br in bridges]
+    assert routes == sorted(routes)  # the nearest ones first
+    again = lat.bridge_plan(text, skin)["bridges"]
+    assert [(br["hub"], br["route"], tuple(br["wall"])) for br in again] == \
+        [(br["hub"], br["route"], tuple(br["wall"])) for br in bridges]
+    assert routes.count("rerouted") > 0, "the case no longer exercises rerouting"
+    hubs = [br["hub"] for br in bridges] + list(plan["blocked"])
+    assert len(hubs) == len(set(hubs)) == plan["lost_neighbour_hubs"]
+    nearest_made = [br for br in bridges if br["route"] == "nearest"]
+    assert np.all(route_clearances(lat, kept, [(br["hub"], br["end"], br["radius"]) for br in bridges], bridges) > 0)
+    for br in bridges:
+        c, wall, end, r = centers[br["hub"]], br["wall"], br["end"], br["radius"]
+        assert abs(box_distance(wall, skin)) < 1e-6
+        assert np.linalg.norm(np.cross(wall - c, end - c)) < 1e-9 * np.linalg.norm(end - c) ** 2 + 1e-12
+        assert box_distance(end, skin) <= -r + 1e-9  # the far node's ball clear of the wall
+        if br["route"] == "nearest":
+            assert abs(np.linalg.norm(wall - c) - box_distance(c, skin)) < 1e-6
+        else:
+            assert np.linalg.norm(wall - c) >= box_distance(c, skin) - 1e-9
+            # its nearest route met a kept element or a nearest bridge of a hub before it
+            q, n = box_nearest(c, skin)
+            earlier = [other for other in nearest_made if other["hub"] < br["hub"]]
+            assert route_clearances(lat, kept, [(br["hub"], q + 1.5 * r * n, r)], earlier)[0] < 1e-9
+
+
+@pytest.mark.parametrize("skin", [0.0, 0.2], ids=["no skin", "skin 0.2"])
+def test_rerouted_bridges_make_one_valid_solid(skin):
+    """The first crowded lattice trimmed with its rerouted bridges, without and with a skin: one valid solid with
+    the plan's counts, whose volume agrees with Monte Carlo membership in the bridged lattice inside the (inner)
+    wall, plus the skin in closed form; without a skin the mesh path reports the same counts."""
+    lat, text = crowded_lattice(0), body("box.brep")
+    stats, messages = {}, []
+    props = sl.brep_properties(lat.brep(text, "bridge", skin=skin, stats=stats, log=messages.append))
+    assert props["valid"], props["report"]
+    assert props["solids"] == 1
+    plan = lat.bridge_plan(text, skin)
+    rerouted = sum(br["route"] == "rerouted" for br in plan["bridges"])
+    assert stats["rerouted_bridges"] == rerouted > 0
+    assert stats["bridges"] == len(plan["bridges"]) and stats["blocked_bridges"] == len(plan["blocked"]) == 0
+    assert sum("rerouted" in m for m in messages) == rerouted
+    rng = np.random.default_rng(18)
+    samples = 200000
+    points = rng.uniform(BOX_LO, BOX_HI, size=(samples, 3))
+    points = points[box_distance(points, skin) >= 0.0]
+    box = float(np.prod(BOX_HI - BOX_LO))
+    p = inside_lattice(points, Bridged(plan)).sum() / samples
+    estimate = box * p + box - float(np.prod(BOX_HI - BOX_LO - 2 * skin))
+    sigma = box * math.sqrt(p * (1 - p) / samples)
+    assert abs(props["volume"] - estimate) < 4 * sigma, (props["volume"], estimate, sigma)
+    print("skin %g: %d bridges, %d rerouted, volume %.5f, Monte Carlo %.5f +- %.5f"
+          % (skin, stats["bridges"], rerouted, props["volume"], estimate, sigma))
+    if skin:
+        return
+    vertices = np.array([[x, y, z] for x in (-0.4, 2.6) for y in (-0.4, 2.6) for z in (-0.4, 2.6)])
+    triangles = np.array([[0, 1, 3], [0, 3, 2], [4, 6, 7], [4, 7, 5], [0, 4, 5], [0, 5, 1], [2, 3, 7], [2, 7, 6],
+                          [0, 2, 6], [0, 6, 4], [1, 5, 7], [1, 7, 3]])
+    mesh_stats = {}
+    lat.to_mesh(0.01, body=(vertices, triangles), policy="bridge", brep=text, stats=mesh_stats)
+    assert mesh_stats["rerouted_bridges"] == rerouted and mesh_stats["bridges"] == len(plan["bridges"])

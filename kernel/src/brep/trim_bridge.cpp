@@ -3,8 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
+#include <utility>
 
+#include "brep/bridge_routes.hpp"
 #include "brep/trim_phases.hpp"
 #include "steady/brep/bridges.hpp"
 #include "steady/core/errors.hpp"
@@ -16,9 +19,6 @@ namespace {
 
 using namespace trim;
 
-// How far the far node lies past the wall, in bridge radii beyond its own radius: clear of a convex wall by half a
-// radius, so the wall cuts the beam and not the node (at a concave wall part of the node may stay inside it).
-constexpr double kFarNodeClearance = 0.5;
 // Nearest points farther apart than this (relative to the body's size) make a hub's bridge ambiguous.
 constexpr double kAmbiguousRelative = 1e-6;
 // The probe for a node on the medial axis (BRepExtrema may report one point of a whole circle of them): the node
@@ -27,48 +27,47 @@ constexpr double kAmbiguousRelative = 1e-6;
 // fraction of their distance from the medial axis count as on it).
 constexpr double kProbeStep = 1e-3;
 
-double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
-  const Vec3 ab = b - a;
-  const double len2 = glm::dot(ab, ab);
-  const double t = len2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
-  return glm::length(p - (a + t * ab));
-}
-
-// The least distance between segments [a0, a1] and [b0, b1]: the minimum over the interior critical point (when
-// the lines are not parallel and it falls inside both) and the four endpoint-to-segment distances.
-double segment_distance(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1) {
-  double best = std::min({point_segment_distance(a0, b0, b1), point_segment_distance(a1, b0, b1),
-                          point_segment_distance(b0, a0, a1), point_segment_distance(b1, a0, a1)});
-  const Vec3 u = a1 - a0, v = b1 - b0, w = a0 - b0;
-  const double uu = glm::dot(u, u), uv = glm::dot(u, v), vv = glm::dot(v, v), uw = glm::dot(u, w), vw = glm::dot(v, w);
-  const double det = uu * vv - uv * uv;
-  if (det > 1e-12 * uu * vv) {
-    const double s = (uv * vw - vv * uw) / det, t = (uu * vw - uv * uw) / det;
-    if (s > 0.0 && s < 1.0 && t > 0.0 && t < 1.0) best = std::min(best, glm::length(w + s * u - t * v));
+// The bridges of `candidates` (toward the nearest points, in hub order) into `plan`: first every one clear of the
+// kept elements of other hubs and of the bridges made before it; then, in hub order, the blocked ones rerouted
+// (clear of every bridge made so far), or counted blocked when no route is clear. `lost`: (hub, neighbour it
+// lost) in hub order.
+void choose_bridges(const FlatLattice& f, const SolidBody& wall, const std::vector<char>& kept, double gap,
+                    const std::vector<Bridge>& candidates,
+                    const std::vector<std::pair<std::int64_t, std::int64_t>>& lost, BridgePlan& plan,
+                    Progress& progress) {
+  const bridges::Clearance clearance(f, kept, gap);
+  std::vector<char> blocked(candidates.size(), 0);
+  tbb::parallel_for(std::size_t(0), candidates.size(),
+                    [&](std::size_t k) { blocked[k] = clearance.meets_kept_element(candidates[k]); });
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    blocked[k] = blocked[k] || clearance.meets_bridge(candidates[k], plan.bridges);
+    if (!blocked[k]) plan.bridges.push_back(candidates[k]);
   }
-  return best;
-}
-
-// Whether the bridge (segment from `from` to its far node, radius r) meets a kept element not of hub `hub`: every
-// element inside its capsule of its largest radius (a beam is the hull of its end balls, inside that capsule).
-bool meets_foreign_element(const FlatLattice& f, const std::vector<char>& kept, std::int64_t hub, const Vec3& from,
-                           const Vec3& to, double r, double gap) {
-  for (std::int64_t k = 0; k < f.ball_count(); ++k) {
-    if (!kept[k] || k == hub) continue;
-    if (point_segment_distance(f.balls[k].center, from, to) < f.balls[k].radius + r + gap) return true;
+  const std::int64_t count = std::count(blocked.begin(), blocked.end(), 1);
+  progress.set_total(std::max<std::int64_t>(1, count));
+  if (count == 0) return;
+  bridges::BridgeRouter router(f, wall);
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    if (!blocked[k]) continue;
+    progress.advance();
+    const Bridge& b = candidates[k];
+    const Vec3 c = f.balls[b.hub].center;
+    std::vector<Vec3> directions;
+    const auto range = std::equal_range(lost.begin(), lost.end(), std::make_pair(b.hub, std::int64_t(0)),
+                                        [](const auto& x, const auto& y) { return x.first < y.first; });
+    for (auto it = range.first; it != range.second; ++it)
+      directions.push_back(glm::normalize(f.balls[it->second].center - c));
+    if (const std::optional<Bridge> rerouted = router.reroute(b, directions, clearance, plan.bridges))
+      plan.bridges.push_back(*rerouted);
+    else
+      plan.blocked.push_back(b.hub);
   }
-  for (const FlatBeam& b : f.beams) {
-    if (!kept[b.a] || !kept[b.b] || b.a == hub || b.b == hub) continue;
-    if (segment_distance(from, to, f.balls[b.a].center, f.balls[b.b].center) < std::max(b.ra, b.rb) + r + gap)
-      return true;
-  }
-  return false;
 }
 
 }  // namespace
 
 BridgePlan plan_bridges(const FlatLattice& f, const TopoDS_Shape& body_shape, double skin, Progress& progress) {
-  // The classification's share of the units (TrimBudget's fixed shares), then the nearest points.
+  // The classification's share of the units (TrimBudget's fixed shares), then the nearest points and the routes.
   progress.set_total(100);
   Progress classification(progress, 80);
   TrimBudget budget(classification);
@@ -98,16 +97,23 @@ BridgePlan plan_bridges(const FlatLattice& f, const TopoDS_Shape& body_shape, do
 
   // The radius of each kept hub's bridge: the largest end radius at it of the beams it lost (0: it lost none).
   std::vector<double> bridge_radius(n, 0.0);
+  std::vector<std::pair<std::int64_t, std::int64_t>> lost;  // (kept hub, the neighbour it lost)
   for (std::int64_t e = 0; e < f.beam_count(); ++e) {
     if (!frustums[e].exists) continue;
     const FlatBeam& b = f.beams[e];
-    if (kept[b.a] && !kept[b.b]) bridge_radius[b.a] = std::max(bridge_radius[b.a], b.ra);
-    if (kept[b.b] && !kept[b.a]) bridge_radius[b.b] = std::max(bridge_radius[b.b], b.rb);
+    if (kept[b.a] && !kept[b.b]) {
+      bridge_radius[b.a] = std::max(bridge_radius[b.a], b.ra);
+      lost.emplace_back(b.a, b.b);
+    }
+    if (kept[b.b] && !kept[b.a]) {
+      bridge_radius[b.b] = std::max(bridge_radius[b.b], b.rb);
+      lost.emplace_back(b.b, b.a);
+    }
   }
+  std::stable_sort(lost.begin(), lost.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
   // Nearest points (BRepExtrema: serial).
-  const double gap = kClearanceRelative * wall.size();
   std::vector<Bridge> candidates;
-  Progress nearest(progress, 20, std::max<std::int64_t>(1, n));
+  Progress nearest(progress, 15, std::max<std::int64_t>(1, n));
   for (std::int64_t i = 0; i < n; ++i) {
     nearest.advance();
     if (bridge_radius[i] <= 0.0) continue;
@@ -126,32 +132,12 @@ BridgePlan plan_bridges(const FlatLattice& f, const TopoDS_Shape& body_shape, do
       const Vec3 moved = wall.nearest_points(probe).front();
       b.ambiguous = glm::length(moved - b.wall) > 100.0 * kProbeStep * d;
     }
-    b.end = b.wall + (b.wall - c) / d * ((1.0 + kFarNodeClearance) * b.radius);
+    b.end = b.wall + (b.wall - c) / d * ((1.0 + bridges::kFarNodeClearance) * b.radius);
     candidates.push_back(b);
   }
-  // Bridges that would meet a kept element of another hub are refused; then, in hub order, those meeting an
-  // earlier bridge.
-  std::vector<char> blocked(candidates.size(), 0);
-  tbb::parallel_for(std::size_t(0), candidates.size(), [&](std::size_t k) {
-    const Bridge& b = candidates[k];
-    blocked[k] = meets_foreign_element(f, kept, b.hub, f.balls[b.hub].center, b.end, b.radius, gap);
-  });
-  for (std::size_t k = 0; k < candidates.size(); ++k) {
-    if (blocked[k]) {
-      plan.blocked.push_back(candidates[k].hub);
-      continue;
-    }
-    const Bridge& b = candidates[k];
-    for (const Bridge& earlier : plan.bridges)
-      if (segment_distance(f.balls[b.hub].center, b.end, f.balls[earlier.hub].center, earlier.end) <
-          b.radius + earlier.radius + gap) {
-        blocked[k] = 1;
-        break;
-      }
-    if (blocked[k])
-      plan.blocked.push_back(b.hub);
-    else
-      plan.bridges.push_back(b);
+  {
+    Progress routes(progress, 5);
+    choose_bridges(f, wall, kept, kClearanceRelative * wall.size(), candidates, lost, plan, routes);
   }
   // The bridged lattice.
   std::vector<std::int64_t> index(n, -1);
@@ -184,8 +170,15 @@ TrimResult trim_with_bridges(const FlatLattice& f, const TopoDS_Shape& body, con
     Progress part(progress, 10);
     plan = plan_bridges(f, body, options.skin, part);
   }
+  for (const Bridge& b : plan.bridges)
+    if (b.rerouted)
+      report(options, "trim: bridge from hub " + std::to_string(b.hub) +
+                          " rerouted: toward its nearest wall point it would meet another kept element");
   for (std::int64_t hub : plan.blocked)
-    report(options, "trim: no bridge from hub " + std::to_string(hub) + ": it would meet another kept element");
+    report(options, "trim: no bridge from hub " + std::to_string(hub) +
+                        ": on every route tried (its nearest wall point, the beams it lost, up to " +
+                        std::to_string(bridges::kRings * bridges::kRingDirections) +
+                        " directions about the nearest) it would meet another kept element");
   TrimOptions clip = options;
   clip.policy = TrimPolicy::Clip;
   clip.dangling = DanglingBeams::Keep;  // a bridge whose far node is dropped whole is still cut at the wall
@@ -201,6 +194,8 @@ TrimResult trim_with_bridges(const FlatLattice& f, const TopoDS_Shape& body, con
   s.kept_hubs = static_cast<std::int64_t>(plan.kept.size());
   s.lost_neighbour_hubs = plan.lost_neighbour_hubs;
   s.bridges = static_cast<std::int64_t>(plan.bridges.size());
+  s.rerouted_bridges =
+      std::count_if(plan.bridges.begin(), plan.bridges.end(), [](const Bridge& b) { return b.rerouted; });
   s.blocked_bridges = static_cast<std::int64_t>(plan.blocked.size());
   s.ambiguous_bridges =
       std::count_if(plan.bridges.begin(), plan.bridges.end(), [](const Bridge& b) { return b.ambiguous; });

@@ -104,10 +104,15 @@ def report_trim(label, stats):
     if stats["relaid_out"]:
         FreeCAD.Console.PrintMessage("%s: trimmed on a later attempt, the first having failed (%s)\n"
                                      % (label, stats["relaid_reason"]))
+    if stats.get("rerouted_bridges"):
+        FreeCAD.Console.PrintMessage(
+            "%s: %d of %d bridges took another route to the wall (toward the nearest point they would run into "
+            "another kept element)\n" % (label, stats["rerouted_bridges"], stats["bridges"]))
     if stats.get("blocked_bridges"):
         FreeCAD.Console.PrintWarning(
-            "%s: %d of %d hubs that lost a neighbour got no bridge (it would run into another kept element); they "
-            "stay joined by their other beams\n" % (label, stats["blocked_bridges"], stats["lost_neighbour_hubs"]))
+            "%s: %d of %d hubs that lost a neighbour got no bridge (on every route tried it would run into another "
+            "kept element); they stay joined by their other beams\n"
+            % (label, stats["blocked_bridges"], stats["lost_neighbour_hubs"]))
     if stats.get("rim_cut_reason"):
         FreeCAD.Console.PrintMessage(
             "%s: the clusters on the skin's rims were clipped one by one, their single Cut having failed (%s)\n"

@@ -11,10 +11,14 @@
 //
 // Decisions where the geometry leaves the method no answer:
 //  - a hub on the medial axis (several nearest points, as on a cylinder's axis): the first point BRepExtrema
-//    gives is taken, and counted as ambiguous;
-//  - a bridge whose beam would meet another kept element (a ball or beam not of its own hub, or an earlier
-//    bridge): it is not made (the builder needs elements that meet only at their own hubs), counted as blocked and
-//    named through TrimOptions::report; its hub stays joined to the lattice by its other beams.
+//    gives is taken, and counted as ambiguous (unless that bridge is blocked and rerouted);
+//  - a bridge whose beam would meet another kept element (a ball or beam not of its own hub, or a bridge already
+//    made): the builder needs elements that meet only at their own hubs, so the bridge is rerouted. Once every
+//    nearest-point bridge that is clear has been made (in hub order), each blocked hub tries, in hub order, the
+//    directions of the beams it lost and rings of directions about its nearest one (a fixed number: at most 80,
+//    brep/bridge_routes.hpp), each followed by a ray to the wall, and takes the shortest route clear of the same
+//    capsule tests (ties: the earlier candidate). Only when no route is clear is it left unbridged: counted as
+//    blocked and named through TrimOptions::report; its hub stays joined to the lattice by its other beams.
 // The policy's `dangling` option does not apply: the lost beams are always replaced by the bridges.
 #include <TopoDS_Shape.hxx>
 
@@ -32,7 +36,9 @@ struct Bridge {
   Vec3 wall{0.0};          // the nearest point of the wall to the hub's node
   Vec3 end{0.0};           // the far node, past the wall on the line from the node through `wall`
   double radius = 0.0;     // of the bridge beam and its far node
-  bool ambiguous = false;  // the node has several nearest points on the wall
+  bool ambiguous = false;  // the node has several nearest points on the wall (and the first was taken)
+  bool rerouted = false;   // the bridge toward the nearest point was blocked: `wall` is where another route, from
+                           // the node along the line through `wall`, first meets the wall
 };
 
 struct BridgePlan {
@@ -40,8 +46,8 @@ struct BridgePlan {
   // then the bridges.
   FlatLattice lattice;
   std::vector<std::int64_t> kept;  // source ball index of lattice.balls[k] for k < kept.size()
-  std::vector<Bridge> bridges;
-  std::vector<std::int64_t> blocked;  // source hubs that lost a neighbour and were refused a bridge
+  std::vector<Bridge> bridges;        // the nearest-point bridges in hub order, then the rerouted ones in hub order
+  std::vector<std::int64_t> blocked;  // source hubs that lost a neighbour and found no clear route to the wall
   std::int64_t lost_neighbour_hubs = 0;
   std::int64_t inside_hubs = 0, outside_hubs = 0, crossing_hubs = 0;  // the source's hubs against the wall
 };

@@ -83,10 +83,12 @@ struct TrimStats {
                                           // or the spheres laid out the other way) made the part
   std::string relaid_reason;              //   why the earlier attempts failed
   // Policy Bridge (then the other counts are of the bridged lattice's trim, but inside/outside/crossing of the
-  // lattice's own hubs): hubs kept whole, those of them that lost a neighbour, bridges made, bridges refused
-  // because they would meet another kept element (their hubs stay unbridged, named through `report`), bridges
-  // whose hub had several nearest points on the wall (the first taken).
-  std::int64_t kept_hubs = 0, lost_neighbour_hubs = 0, bridges = 0, blocked_bridges = 0, ambiguous_bridges = 0;
+  // lattice's own hubs): hubs kept whole, those of them that lost a neighbour, bridges made, of those the ones
+  // rerouted (toward the nearest wall point they would meet another kept element; another route was clear),
+  // bridges refused because every route tried would meet another kept element (their hubs stay unbridged, named
+  // through `report`), bridges whose hub had several nearest points on the wall (the first taken).
+  std::int64_t kept_hubs = 0, lost_neighbour_hubs = 0, bridges = 0, rerouted_bridges = 0, blocked_bridges = 0,
+               ambiguous_bridges = 0;
   std::int64_t faces = 0;
   double volume = 0.0;  // of the part (shape_volume), filled by lattice_part_brep
   double classify_seconds = 0.0, build_seconds = 0.0, boolean_seconds = 0.0, assemble_seconds = 0.0;
