@@ -43,9 +43,10 @@ def main():
     stats = {}
     lat.brep(cone.Shape.exportBrepToString(), "bridge", stats=stats)
     print("face lattice: %s groups, %d balls, %d beams; part valid %s, %d solid(s), volume %.3f mm^3, %.1f s; %d hubs "
-          "kept, %d bridges, %d blocked" % (lat.counts, lat.ball_count, lat.beam_count, part.Shape.isValid(),
-                                            len(part.Shape.Solids), part.Shape.Volume, seconds, stats["kept_hubs"],
-                                            stats["bridges"], stats["blocked_bridges"]))
+          "kept, %d bridges (%d rerouted), %d blocked" % (
+              lat.counts, lat.ball_count, lat.beam_count, part.Shape.isValid(), len(part.Shape.Solids),
+              part.Shape.Volume, seconds, stats["kept_hubs"], stats["bridges"], stats["rerouted_bridges"],
+              stats["blocked_bridges"]))
     if FreeCAD.GuiUp:
         lattice.ViewObject.Visibility = False
         part.ViewObject.ShapeColor = (0.85, 0.55, 0.20)
