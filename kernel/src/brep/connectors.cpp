@@ -14,7 +14,9 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <chrono>
+#include <random>
 #include <cmath>
 
 #include "steady/brep/brep_io.hpp"
@@ -24,9 +26,6 @@ namespace steady {
 
 namespace {
 
-// Fuzzy values (in rod radii) tried in turn when the exact Booleans fail, smallest first (as hub_group.cpp does):
-// the edges a fuzzy Boolean makes keep a tolerance of that size.
-constexpr double kFuzzyRetries[] = {0.0, 1e-7, 1e-6};
 // The cylinders run this many reach radii from the node: past the ball's sphere, so that their end disks never
 // meet it.
 constexpr double kCylinderLength = 1.5;
@@ -37,13 +36,55 @@ constexpr double kBuildRodRadius = 10.0;
 
 gp_Pnt to_pnt(const Vec3& v) { return gp_Pnt(v.x, v.y, v.z); }
 
+// How each try builds the connector: its spheres' poles turned away from where the cylinders meet them (or
+// along z as OpenCASCADE puts them), the cylinders fused all at once or one at a time (where all at once breaks,
+// one at a time has held, hub_group.cpp), and the fuzzy value in rod radii (smallest first: the edges a fuzzy
+// Boolean makes keep a tolerance of that size).
+struct Attempt {
+  bool turned_poles = true;
+  bool one_by_one = false;
+  double fuzzy = 0.0;
+};
+constexpr Attempt kAttempts[] = {{true, false, 0.0}, {true, true, 0.0}, {false, false, 0.0},
+                                 {true, false, 1e-7}, {true, true, 1e-7}, {true, false, 1e-6}};
+// Points sampled to check a built connector's volume (a Boolean can return a valid solid of the wrong shape):
+// 20,000 points give the volume to about 1.5 % (1 sigma); a result more than kSampleSigmas sigmas off is refused.
+constexpr int kVolumeSamples = 20000;
+constexpr double kSampleSigmas = 6.0;
+
+// A sphere's pole (and so the degenerate points of its parametrization) far from every circle where a cylinder
+// meets a sphere of the connector: those circles lie at the angles `circle_angles` from the beam directions. The
+// best of 256 directions spread over the sphere, chosen the same way for the same directions.
+Vec3 sphere_pole(const std::vector<Vec3>& directions, const std::vector<double>& circle_angles) {
+  Vec3 best(0.0, 0.0, 1.0);
+  double best_score = -1.0;
+  const int n = 256;
+  for (int k = 0; k < n; ++k) {
+    const double z = 1.0 - (2.0 * k + 1.0) / n, r = std::sqrt(1.0 - z * z), phi = k * 2.399963229728653;
+    const Vec3 pole(r * std::cos(phi), r * std::sin(phi), z);
+    double score = INFINITY;
+    for (const Vec3& d : directions) {
+      const double angle = std::acos(std::clamp(glm::dot(pole, d), -1.0, 1.0));
+      for (double a : circle_angles) score = std::min({score, std::abs(angle - a), std::abs(M_PI - angle - a)});
+    }
+    if (score > best_score) best_score = score, best = pole;
+  }
+  return best;
+}
+
+TopoDS_Shape sphere(double radius, const Vec3& pole) {
+  const gp_Dir z(pole.x, pole.y, pole.z);
+  const Vec3 x = std::abs(pole.x) < 0.6 ? glm::normalize(glm::cross(pole, Vec3(1, 0, 0))) : glm::normalize(glm::cross(pole, Vec3(0, 1, 0)));
+  return BRepPrimAPI_MakeSphere(gp_Ax2(gp_Pnt(0, 0, 0), z, gp_Dir(x.x, x.y, x.z)), radius).Shape();
+}
+
 // ExtendedHub(radius) within the connector's ball: the node's ball, core_bulge larger, and a cylinder along each
 // direction from inside that ball (where the cylinders of nearly opposite beams do not meet yet) past the reach.
 TopTools_ListOfShape capsule_pieces(const std::vector<Vec3>& directions, double radius, double core_bulge,
-                                    double reach) {
+                                    double reach, const Vec3& pole) {
   TopTools_ListOfShape pieces;
   const double core = radius * (1.0 + core_bulge);
-  pieces.Append(BRepPrimAPI_MakeSphere(gp_Pnt(0, 0, 0), core).Shape());
+  pieces.Append(sphere(core, pole));
   // The cylinder leaves the core's sphere at sqrt(core^2 - radius^2) along its axis; it starts halfway there.
   const double start = 0.5 * std::sqrt(core * core - radius * radius);
   for (const Vec3& d : directions)
@@ -64,22 +105,66 @@ TopoDS_Shape boolean(const TopTools_ListOfShape& args, const TopTools_ListOfShap
   return op.Shape();
 }
 
-TopoDS_Shape fuse(TopTools_ListOfShape pieces, double fuzzy) {
-  TopTools_ListOfShape first;
-  first.Append(pieces.First());
+// The union of the pieces as one valid solid, or a null shape.
+TopoDS_Shape fuse(TopTools_ListOfShape pieces, double fuzzy, bool one_by_one) {
+  TopoDS_Shape sum = pieces.First();
   pieces.RemoveFirst();
-  return boolean<BRepAlgoAPI_Fuse>(first, pieces, fuzzy);
+  TopTools_ListOfShape first, rest;
+  for (const TopoDS_Shape& piece : pieces) {
+    if (!one_by_one) {
+      rest.Append(piece);
+      continue;
+    }
+    first.Clear(), rest.Clear();
+    first.Append(sum), rest.Append(piece);
+    sum = boolean<BRepAlgoAPI_Fuse>(first, rest, fuzzy);
+    if (sum.IsNull()) return sum;
+  }
+  if (!one_by_one) {
+    first.Append(sum);
+    sum = boolean<BRepAlgoAPI_Fuse>(first, rest, fuzzy);
+  }
+  return !sum.IsNull() && solid_count(sum) == 1 && is_valid(sum) ? sum : TopoDS_Shape();
+}
+
+// The connector's volume by sampling its definition (build scale, node at the origin), and one standard error.
+std::pair<double, double> sampled_volume(const std::vector<Vec3>& directions, const ConnectorParameters& p) {
+  const double rho = kBuildRodRadius, reach = p.reach * rho;
+  auto in_hub = [&](const Vec3& q, double radius) {
+    if (glm::length(q) <= radius * (1.0 + p.core_bulge)) return true;
+    for (const Vec3& d : directions) {
+      const double along = glm::dot(q, d);
+      if (along >= 0.0 && glm::length(q - along * d) <= radius) return true;
+    }
+    return false;
+  };
+  std::mt19937_64 rng(20261126);  // fixed: the same connector is checked the same way
+  std::uniform_real_distribution<double> u(-reach, reach);
+  int inside = 0;
+  for (int k = 0; k < kVolumeSamples; ++k) {
+    const Vec3 q(u(rng), u(rng), u(rng));
+    inside += glm::length(q) <= reach && in_hub(q, p.sleeve * rho) && !in_hub(q, p.hole * rho);
+  }
+  const double box = 8.0 * reach * reach * reach, f = static_cast<double>(inside) / kVolumeSamples;
+  return {box * f, box * std::sqrt(std::max(f * (1.0 - f), 1.0 / kVolumeSamples) / kVolumeSamples)};
 }
 
 // One attempt at the build scale (rod radius kBuildRodRadius, node at the origin): the connector's only solid, or a
 // null shape.
-TopoDS_Shape attempt(const std::vector<Vec3>& directions, const ConnectorParameters& p, double fuzzy) {
-  const double rho = kBuildRodRadius, reach = p.reach * rho;
-  const TopoDS_Shape sleeves = fuse(capsule_pieces(directions, p.sleeve * rho, p.core_bulge, reach), fuzzy);
-  const TopoDS_Shape holes = fuse(capsule_pieces(directions, p.hole * rho, p.core_bulge, reach), fuzzy);
-  if (sleeves.IsNull() || holes.IsNull()) return TopoDS_Shape();
+TopoDS_Shape attempt(const std::vector<Vec3>& directions, const ConnectorParameters& p, const Attempt& how) {
+  const double rho = kBuildRodRadius, reach = p.reach * rho, fuzzy = how.fuzzy * rho;
+  Vec3 pole(0.0, 0.0, 1.0);
+  if (how.turned_poles)
+    pole = sphere_pole(directions, {std::asin(1.0 / (1.0 + p.core_bulge)), std::asin(p.sleeve / p.reach),
+                                    std::asin(p.hole / p.reach)});
+  const TopoDS_Shape sleeves = fuse(capsule_pieces(directions, p.sleeve * rho, p.core_bulge, reach, pole), fuzzy,
+                                    how.one_by_one);
+  if (sleeves.IsNull()) return sleeves;
+  const TopoDS_Shape holes = fuse(capsule_pieces(directions, p.hole * rho, p.core_bulge, reach, pole), fuzzy,
+                                  how.one_by_one);
+  if (holes.IsNull()) return holes;
   TopTools_ListOfShape ball, outer, inner;
-  ball.Append(BRepPrimAPI_MakeSphere(gp_Pnt(0, 0, 0), reach).Shape());
+  ball.Append(sphere(reach, pole));
   outer.Append(sleeves);
   inner.Append(holes);
   const TopoDS_Shape bounded = boolean<BRepAlgoAPI_Common>(ball, outer, fuzzy);
@@ -89,7 +174,9 @@ TopoDS_Shape attempt(const std::vector<Vec3>& directions, const ConnectorParamet
   const TopoDS_Shape result = boolean<BRepAlgoAPI_Cut>(kept, inner, fuzzy);
   if (result.IsNull() || solid_count(result) != 1) return TopoDS_Shape();
   const TopoDS_Shape solid = TopExp_Explorer(result, TopAbs_SOLID).Current();
-  return is_valid(solid) ? solid : TopoDS_Shape();
+  if (!is_valid(solid)) return TopoDS_Shape();
+  const auto [sampled, sigma] = sampled_volume(directions, p);
+  return std::abs(shape_volume(solid) - sampled) <= kSampleSigmas * sigma ? solid : TopoDS_Shape();
 }
 
 }  // namespace
@@ -103,8 +190,8 @@ TopoDS_Shape connector_solid(const Vec3& center, const std::vector<Vec3>& direct
     if (!std::isfinite(n) || !(n > 0.0)) fail_input("directions", "must be finite, non-zero vectors");
     unit.push_back(d / n);
   }
-  for (double fuzzy : kFuzzyRetries) {
-    const TopoDS_Shape solid = attempt(unit, p, fuzzy * kBuildRodRadius);
+  for (const Attempt& how : kAttempts) {
+    const TopoDS_Shape solid = attempt(unit, p, how);
     if (solid.IsNull()) continue;
     gp_Trsf scale, move;
     scale.SetScale(gp_Pnt(0, 0, 0), p.rod_radius / kBuildRodRadius);
@@ -115,7 +202,8 @@ TopoDS_Shape connector_solid(const Vec3& center, const std::vector<Vec3>& direct
   fail_input("connector", "OpenCASCADE's Booleans gave no single valid solid for the connector at (" +
                               std::to_string(center.x) + ", " + std::to_string(center.y) + ", " +
                               std::to_string(center.z) + ") with " + std::to_string(unit.size()) +
-                              " beams, exactly or with fuzzy values up to 1e-6 rod radii");
+                              " beams, with its spheres turned or not, fused at once or one at a time, exactly or with fuzzy values up to "
+                              "1e-6 rod radii");
 }
 
 TopoDS_Shape rod_solid(double radius, double length) {
