@@ -243,15 +243,22 @@ TEST(Connectors, CubicGridHasCornerEdgeFaceAndInnerFamilies) {
   for (const ConnectorFamily& family : plan.families) found.insert({family.directions.size(), family.members.size()});
   const std::multiset<std::pair<std::size_t, std::size_t>> expected{{3, 8}, {4, 36}, {5, 54}, {6, 27}};
   EXPECT_EQ(found, expected);
-  // Placements carry each template onto its member's beam directions.
+  // Placements carry each template's directions onto its member's beams, one to one.
   for (const ConnectorFamily& family : plan.families)
-    for (const ConnectorPlacement& m : family.members)
+    for (const ConnectorPlacement& m : family.members) {
+      std::set<std::int64_t> neighbours, reached;
+      for (const std::int64_t* e = f.incident_begin(m.ball); e != f.incident_end(m.ball); ++e)
+        neighbours.insert(f.other_ball(*e, m.ball));
+      EXPECT_NEAR(glm::determinant(m.rotation), 1.0, 1e-12);
       for (const Vec3& d : family.directions) {
-        const Vec3 w = m.center + m.rotation * d;
-        const Vec3 nearest = glm::round(w);
-        EXPECT_LT(glm::length(w - nearest), 1e-12);
-        EXPECT_NEAR(glm::length(nearest - m.center), 1.0, 1e-12);
+        const Vec3 w = glm::round(m.center + m.rotation * d);
+        EXPECT_LT(glm::length(m.center + m.rotation * d - w), 1e-12);
+        const std::int64_t id = static_cast<std::int64_t>((w.z * 5 + w.y) * 5 + w.x);  // grid_lattice's numbering
+        EXPECT_TRUE(neighbours.count(id)) << "ball " << m.ball;
+        reached.insert(id);
       }
+      EXPECT_EQ(reached, neighbours) << "ball " << m.ball;
+    }
   EXPECT_EQ(plan.rods.size(), f.beams.size());
   // Every node has beams at right angles, so every rod ends rho cot(45 degrees) = rho inside each node: one length.
   ASSERT_EQ(plan.cut_list.size(), 1u);
