@@ -16,6 +16,7 @@ namespace py = pybind11;
 void bind_similarity(py::module_& m);
 void bind_lattice(py::module_& m);
 void bind_brep(py::module_& m);
+void bind_connectors(py::module_& m);
 void bind_queries(py::module_& m);
 void bind_properties(py::module_& m);
 void bind_presets(py::module_& m);
@@ -58,6 +59,7 @@ PYBIND11_MODULE(steadylattice, m) {
   steadypy::bind_similarity(m);
   steadypy::bind_lattice(m);
   steadypy::bind_brep(m);
+  steadypy::bind_connectors(m);
   steadypy::bind_queries(m);
   steadypy::bind_properties(m);
   steadypy::bind_presets(m);

@@ -5,6 +5,8 @@
 
 #include "steady/brep/body_filter.hpp"
 #include "steady/brep/bridges.hpp"
+#include "steady/brep/connector_step.hpp"
+#include "steady/brep/connectors.hpp"
 #include "steady/brep/brep_builder.hpp"
 #include "steady/brep/brep_io.hpp"
 #include "steady/brep/lattice_part.hpp"

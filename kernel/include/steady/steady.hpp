@@ -24,6 +24,7 @@
 
 #include "steady/lattice/beam_frustum.hpp"
 #include "steady/lattice/broad_phase.hpp"
+#include "steady/lattice/connector_plan.hpp"
 #include "steady/lattice/convex_distance.hpp"
 #include "steady/lattice/flat_lattice.hpp"
 #include "steady/lattice/hub.hpp"

@@ -77,8 +77,8 @@ void write_lattice_step(const std::string& path, const FlatLattice& lattice, con
     r = make_part(lattice, separate, part);
   }
   if (stats) *stats = r.stats;
-  std::vector<StepPart> parts = {{names.lattice, r.lattice, names.lattice_color, true}};
-  if (!r.skin.IsNull()) parts.push_back({names.skin, r.skin, names.skin_color, true});
+  std::vector<StepPart> parts = {{names.lattice, r.lattice, names.lattice_color, true, {}}};
+  if (!r.skin.IsNull()) parts.push_back({names.skin, r.skin, names.skin_color, true, {}});
   {
     Progress part(progress, kStepFileUnits);
     write_step_assembly(path, parts, names.assembly, part);

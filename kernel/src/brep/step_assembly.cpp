@@ -143,8 +143,14 @@ void write_step_assembly(const std::string& path, const std::vector<StepPart>& p
     TDataStd_Name::Set(label, p.name.c_str());
     if (p.has_color)
       colors->SetColor(label, Quantity_Color(p.color[0], p.color[1], p.color[2], Quantity_TOC_RGB), XCAFDoc_ColorGen);
-    const TDF_Label component = shapes->AddComponent(assembly, label, TopLoc_Location());
-    TDataStd_Name::Set(component, p.name.c_str());
+    if (p.instances.empty()) {
+      const TDF_Label component = shapes->AddComponent(assembly, label, TopLoc_Location());
+      TDataStd_Name::Set(component, p.name.c_str());
+    }
+    for (std::size_t i = 0; i < p.instances.size(); ++i) {
+      const TDF_Label component = shapes->AddComponent(assembly, label, TopLoc_Location(p.instances[i]));
+      TDataStd_Name::Set(component, p.name.c_str());
+    }
   }
   shapes->UpdateAssemblies();
   progress.advance(5);

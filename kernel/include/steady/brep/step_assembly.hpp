@@ -2,6 +2,7 @@
 // STEP assemblies through OpenCASCADE's XCAF: named, coloured parts under one named assembly, as CAD systems
 // (FreeCAD, and OpenCASCADE's own STEP reader) read them back.
 #include <TopoDS_Shape.hxx>
+#include <gp_Trsf.hxx>
 
 #include <array>
 #include <string>
@@ -17,6 +18,9 @@ struct StepPart {
   TopoDS_Shape shape;
   std::array<double, 3> color{0.8, 0.8, 0.8};  // RGB in [0, 1]
   bool has_color = true;
+  // Where copies of the part go: empty for one copy as it is; otherwise one component per placement, all of one
+  // product (a family of connectors, a length of rod), which readers give back as placed copies of one shape.
+  std::vector<gp_Trsf> instances;
 };
 
 constexpr std::size_t kMaxStepNameLength = 255;
