@@ -7,6 +7,8 @@
 #include <GProp_GProps.hxx>
 #include <TopExp_Explorer.hxx>
 #include <gtest/gtest.h>
+
+#include <functional>
 #include <unistd.h>
 
 #include <cmath>
@@ -407,6 +409,109 @@ TEST(Connectors, ATooShortBeamIsNamedWithTheLargestReachThatFits) {
     EXPECT_NE(m.find("beam 1 (balls 0 and 2, length 0.4)"), std::string::npos) << m;
     // Each sleeve may run at most half the beam: sqrt(reach^2 - 1) 0.1 < 0.2, reach < sqrt(5) = 2.23607.
     EXPECT_NE(m.find("largest reach that fits it is 2.23607"), std::string::npos) << m;
+  }
+}
+
+// Whether a point belongs to the connector at `center` (rod radius 0.1, the parameters' defaults: sleeve 1.6,
+// reach 2.5, hole 1, core 5 % wider) with beams along `directions`: the definition, evaluated directly.
+bool in_connector(const Vec3& q, const Vec3& center, const std::vector<Vec3>& directions) {
+  const double rho = 0.1, reach = 2.5 * rho, sleeve = 1.6 * rho, hole = rho, core = 1.6 * 1.05 * rho;
+  const Vec3 v = q - center;
+  if (glm::length(v) > reach) return false;
+  bool outer = glm::length(v) <= core, inner = glm::length(v) <= hole * 1.05;
+  for (const Vec3& d : directions) {
+    const double axial = glm::dot(v, d), radial = glm::length(v - axial * d);
+    outer = outer || (axial >= 0.0 && radial <= sleeve);
+    inner = inner || (axial >= 0.0 && radial <= hole);
+  }
+  return outer && !inner;
+}
+
+// The least distance, over a grid of spacing `step` in the box [lo, hi], from a point of the first connector to a
+// point of the second (or of a rod: `other` true there); negative when some grid point is in both.
+bool grid_finds_common_point(const Vec3& lo, const Vec3& hi, double step, const std::function<bool(const Vec3&)>& one,
+                             const std::function<bool(const Vec3&)>& other) {
+  for (double x = lo.x; x <= hi.x; x += step)
+    for (double y = lo.y; y <= hi.y; y += step)
+      for (double z = lo.z; z <= hi.z; z += step)
+        if (one({x, y, z}) && other({x, y, z})) return true;
+  return false;
+}
+
+TEST(Connectors, ClashesWithOtherNodesRodsAndConnectorsAreNamed) {
+  const ConnectorParameters p = parameters(0.1);
+  const Vec3 up(0, 1, 0);
+  // A node 0.25 beside the middle of another node pair's beam: its connector's core (0.168) reaches into that rod
+  // (radius 0.1). The brute force on the definitions finds a common point.
+  const FlatLattice rod_clash = make_flat_lattice(
+      {{{0, 0, 0}, 0.1}, {{10, 0, 0}, 0.1}, {{5, 0.25, 0}, 0.1}, {{5, 10, 0}, 0.1}}, {{0, 1, 0.05, 0.05}, {2, 3, 0.05, 0.05}});
+  const auto in_rod = [](const Vec3& q) { return std::hypot(q.y, q.z) <= 0.1 && q.x >= 0.0 && q.x <= 10.0; };
+  EXPECT_TRUE(grid_finds_common_point({4.8, 0.0, -0.1}, {5.2, 0.2, 0.1}, 0.005,
+                                      [&](const Vec3& q) { return in_connector(q, {5, 0.25, 0}, {up}); }, in_rod));
+  try {
+    plan_connectors(rod_clash, p);
+    ADD_FAILURE() << "accepted";
+  } catch (const InvalidInput& e) {
+    const std::string m = e.what();
+    EXPECT_EQ(m.rfind("reach:", 0), 0u) << m;
+    EXPECT_NE(m.find("connector at ball 2 would meet the rod of beam 0 (balls 0 and 1)"), std::string::npos) << m;
+    EXPECT_NE(m.find("no reach clears them"), std::string::npos) << m;  // the core alone reaches the rod
+  }
+  // 0.3 away the core clears the rod (0.168 + 0.1 < 0.3), the brute force finds no common point, and the plan is made.
+  const FlatLattice apart = make_flat_lattice(
+      {{{0, 0, 0}, 0.1}, {{10, 0, 0}, 0.1}, {{5, 0.3, 0}, 0.1}, {{5, 10, 0}, 0.1}}, {{0, 1, 0.05, 0.05}, {2, 3, 0.05, 0.05}});
+  EXPECT_FALSE(grid_finds_common_point({4.6, -0.1, -0.2}, {5.4, 0.6, 0.2}, 0.005,
+                                       [&](const Vec3& q) { return in_connector(q, {5, 0.3, 0}, {up}); }, in_rod));
+  EXPECT_NO_THROW(plan_connectors(apart, p));
+  // Two nodes with arms at 45 and 135 degrees: 0.6 apart their connectors do not meet (each arm stays within the
+  // reach of its node, on its side of x = 0.3), 0.4 apart they do; a shorter reach then clears them, and the
+  // message says how short.
+  const auto pair = [](double gap) {
+    return make_flat_lattice({{{0, 0, 0}, 0.1}, {{gap, 0, 0}, 0.1}, {{5, 5, 0}, 0.1}, {{gap - 5, 5, 0}, 0.1}},
+                             {{0, 2, 0.05, 0.05}, {1, 3, 0.05, 0.05}});
+  };
+  const Vec3 d0 = glm::normalize(Vec3(1, 1, 0)), d1 = glm::normalize(Vec3(-1, 1, 0));
+  for (const double gap : {0.6, 0.4}) {
+    const bool brute = grid_finds_common_point(
+        {-0.3, -0.3, -0.2}, {gap + 0.3, 0.3, 0.2}, 0.004,
+        [&](const Vec3& q) { return in_connector(q, {0, 0, 0}, {d0}); },
+        [&](const Vec3& q) { return in_connector(q, {gap, 0, 0}, {d1}); });
+    EXPECT_EQ(brute, gap < 0.5) << gap;
+    if (!brute) {
+      EXPECT_NO_THROW(plan_connectors(pair(gap), p)) << gap;
+      continue;
+    }
+    try {
+      plan_connectors(pair(gap), p);
+      ADD_FAILURE() << "accepted";
+    } catch (const InvalidInput& e) {
+      const std::string m = e.what();
+      EXPECT_NE(m.find("the connectors at balls 0 and 1 would meet"), std::string::npos) << m;
+      const auto at = m.find("the largest reach that clears them is ");
+      ASSERT_NE(at, std::string::npos) << m;
+      const double largest = std::stod(m.substr(at + 38));
+      EXPECT_GT(largest, 1.6 * 1.05);
+      EXPECT_LT(largest, 2.5);
+      // Following the advice: at that reach the two connectors clear; each rod then still passes the other node's
+      // arm (the rods cross there), named with its own largest reach; following that too gives a plan.
+      double reach = 0.99 * largest;
+      int fixes = 0;
+      for (; fixes < 4; ++fixes) {
+        try {
+          plan_connectors(pair(gap), parameters(0.1, 1.6, reach));
+          break;
+        } catch (const InvalidInput& again) {
+          const std::string next = again.what();
+          EXPECT_EQ(next.find("the connectors at balls 0 and 1"), std::string::npos) << next;
+          const auto where = next.find("the largest reach that clears them is ");
+          ASSERT_NE(where, std::string::npos) << next;
+          const double fix = std::stod(next.substr(where + 38));
+          ASSERT_LT(fix, reach) << next;
+          reach = 0.99 * fix;
+        }
+      }
+      EXPECT_LT(fixes, 4);
+    }
   }
 }
 

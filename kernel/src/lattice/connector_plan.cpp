@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <array>
 #include <map>
 #include <sstream>
+#include <unordered_map>
 
 #include "lattice/direction_sets.hpp"
 #include "steady/core/errors.hpp"
+#include "steady/core/segment_distance.hpp"
 
 namespace steady {
 
@@ -185,6 +188,177 @@ void make_rods(const FlatLattice& f, const std::vector<std::vector<double>>& dep
   }
 }
 
+
+// A ball or capsule (the points within `radius` of the segment [a, b]; a ball when a == b): the convex pieces the
+// clash tests intersect.
+struct ConvexPiece {
+  Vec3 a, b;
+  double radius;
+};
+
+// Whether the pieces have a common point (to within `slack`): cyclic projections onto closed convex sets converge to
+// a point of their intersection when it is not empty, and keep a gap when it is. A contact closer than `slack`, or
+// so grazing that 1,000 rounds do not settle it, counts as none.
+bool pieces_meet(const std::vector<ConvexPiece>& pieces, double slack) {
+  Vec3 p(0.0);
+  for (const ConvexPiece& s : pieces) p += 0.5 * (s.a + s.b);
+  p /= static_cast<double>(pieces.size());
+  for (int round = 0; round < 1000; ++round) {
+    for (const ConvexPiece& s : pieces) {
+      const Vec3 ab = s.b - s.a;
+      const double len2 = glm::dot(ab, ab);
+      const Vec3 q = s.a + (len2 > 0.0 ? std::clamp(glm::dot(p - s.a, ab) / len2, 0.0, 1.0) : 0.0) * ab;
+      const double d = glm::length(p - q);
+      if (d > s.radius) p = q + (s.radius / d) * (p - q);
+    }
+    double worst = 0.0;
+    for (const ConvexPiece& s : pieces) worst = std::max(worst, point_segment_distance(p, s.a, s.b) - s.radius);
+    if (worst <= slack) return true;
+  }
+  return false;
+}
+
+// The space a connector takes, for the clash tests: its core ball, and per arm the material between the hole and
+// the sleeve within the reach, which lies in the sleeve's capsule about the axis out to sqrt(reach^2 - hole^2) (the
+// farthest it goes along the axis) intersected with the reach ball. Each is convex; a clash is a common point.
+struct ConnectorSpace {
+  const FlatLattice& f;
+  const std::vector<std::vector<Vec3>>& directions;
+  double rho, reach, sleeve, core, arm;
+  ConnectorSpace(const FlatLattice& lattice, const std::vector<std::vector<Vec3>>& d, const ConnectorParameters& p,
+                 double reach_radii)
+      : f(lattice), directions(d), rho(p.rod_radius), reach(reach_radii * p.rod_radius),
+        sleeve(p.sleeve * p.rod_radius), core(p.sleeve * (1.0 + p.core_bulge) * p.rod_radius),
+        arm(std::sqrt(reach_radii * reach_radii - p.hole * p.hole) * p.rod_radius) {}
+
+  ConvexPiece reach_ball(std::int64_t i) const { return {f.balls[i].center, f.balls[i].center, reach}; }
+  ConvexPiece core_ball(std::int64_t i) const { return {f.balls[i].center, f.balls[i].center, core}; }
+  ConvexPiece arm_capsule(std::int64_t i, std::size_t slot) const {
+    return {f.balls[i].center, f.balls[i].center + arm * directions[i][slot], sleeve};
+  }
+  bool along(std::int64_t node, std::size_t slot, std::int64_t other) const {
+    return f.other_ball(f.incident_begin(node)[slot], node) == other;
+  }
+  double slack() const { return 1e-6 * rho; }
+
+  // Whether the connector at ball i meets the rod of beam e (not one of its own).
+  bool meets_rod(std::int64_t i, const Rod& rod) const {
+    const Vec3 c = f.balls[i].center;
+    const double gap = point_segment_distance(c, rod.start, rod.end);
+    if (gap >= reach + rho) return false;
+    if (gap < core + rho) return true;
+    const ConvexPiece r{rod.start, rod.end, rho};
+    for (std::size_t a = 0; a < directions[i].size(); ++a)
+      if (pieces_meet({arm_capsule(i, a), reach_ball(i), r}, slack())) return true;
+    return false;
+  }
+  // Whether the connectors at balls i and j meet, apart from their arms along a beam joining them (the reach range
+  // keeps those apart).
+  bool meets_connector(std::int64_t i, std::int64_t j) const {
+    const double gap = glm::length(f.balls[j].center - f.balls[i].center);
+    if (gap >= 2.0 * reach) return false;
+    if (gap < 2.0 * core) return true;
+    for (std::size_t a = 0; a < directions[i].size(); ++a)
+      if (!along(i, a, j) && pieces_meet({arm_capsule(i, a), reach_ball(i), core_ball(j)}, slack())) return true;
+    for (std::size_t b = 0; b < directions[j].size(); ++b)
+      if (!along(j, b, i) && pieces_meet({arm_capsule(j, b), reach_ball(j), core_ball(i)}, slack())) return true;
+    for (std::size_t a = 0; a < directions[i].size(); ++a)
+      for (std::size_t b = 0; b < directions[j].size(); ++b)
+        if (!along(i, a, j) && !along(j, b, i) &&
+            pieces_meet({arm_capsule(i, a), reach_ball(i), arm_capsule(j, b), reach_ball(j)}, slack()))
+          return true;
+    return false;
+  }
+};
+
+// Node centers in cells of twice the reach: a connector's neighbours (and the rods near a point) are in the 27 cells
+// about it.
+class NodeGrid {
+ public:
+  NodeGrid(const FlatLattice& f, double cell) : cell_(cell) {
+    for (std::int64_t i = 0; i < f.ball_count(); ++i) cells_[key(cell_of(f.balls[i].center))].push_back(i);
+  }
+  template <class Visit>
+  void near(const Vec3& p, Visit&& visit) const {
+    const auto c = cell_of(p);
+    for (std::int64_t dx = -1; dx <= 1; ++dx)
+      for (std::int64_t dy = -1; dy <= 1; ++dy)
+        for (std::int64_t dz = -1; dz <= 1; ++dz) {
+          const auto it = cells_.find(key({c[0] + dx, c[1] + dy, c[2] + dz}));
+          if (it != cells_.end())
+            for (const std::int64_t i : it->second) visit(i);
+        }
+  }
+
+ private:
+  std::array<std::int64_t, 3> cell_of(const Vec3& p) const {
+    return {static_cast<std::int64_t>(std::floor(p.x / cell_)), static_cast<std::int64_t>(std::floor(p.y / cell_)),
+            static_cast<std::int64_t>(std::floor(p.z / cell_))};
+  }
+  static std::uint64_t key(const std::array<std::int64_t, 3>& c) {
+    return (static_cast<std::uint64_t>(c[0] & 0x1fffff) << 42) | (static_cast<std::uint64_t>(c[1] & 0x1fffff) << 21) |
+           static_cast<std::uint64_t>(c[2] & 0x1fffff);
+  }
+  double cell_;
+  std::unordered_map<std::uint64_t, std::vector<std::int64_t>> cells_;
+};
+
+// The largest reach (rod radii, above `lowest`) at which `clashes(reach)` no longer holds, by bisection (a longer
+// reach only lengthens the arms); `lowest` itself when even that clashes.
+template <class Clashes>
+double largest_clear_reach(double lowest, double reach, Clashes&& clashes) {
+  if (clashes(lowest)) return lowest;
+  double lo = lowest, hi = reach;
+  for (int it = 0; it < 60; ++it) (clashes(0.5 * (lo + hi)) ? hi : lo) = 0.5 * (lo + hi);
+  return lo;
+}
+
+// Throws naming "reach" when a connector may meet a rod that does not end at its node, or another node's connector
+// (beside their arms along a beam they share): the parts would not assemble. Names the two and the largest reach
+// that clears them. Candidates from a grid of node centers: O(nodes + rods x length / reach).
+void check_clashes(const FlatLattice& f, const std::vector<std::vector<Vec3>>& directions, const ConnectorPlan& plan,
+                   double min_reach) {
+  const ConnectorParameters& p = plan.parameters;
+  const ConnectorSpace space(f, directions, p, p.reach);
+  const NodeGrid grid(f, 2.0 * space.reach);
+  const auto fix = [&](double largest) {
+    return largest > min_reach ? "; the largest reach that clears them is " + num(largest) + " rod radii"
+                               : "; no reach clears them: use a thinner rod or sleeve, or move the nodes apart";
+  };
+  for (std::int64_t i = 0; i < f.ball_count(); ++i) {
+    if (directions[i].empty()) continue;
+    grid.near(f.balls[i].center, [&](std::int64_t j) {
+      if (j <= i || directions[j].empty() || !space.meets_connector(i, j)) return;
+      const double largest = largest_clear_reach(min_reach, p.reach, [&](double r) {
+        return ConnectorSpace(f, directions, p, r).meets_connector(i, j);
+      });
+      fail_input("reach", "the connectors at balls " + std::to_string(i) + " and " + std::to_string(j) +
+                              " would meet (reach " + num(p.reach) + " rod radii)" + fix(largest));
+    });
+  }
+  for (const Rod& rod : plan.rods) {
+    // Samples every half reach along the rod: a node within reach + rod radius of it is within 2 reach of one.
+    const double length = glm::length(rod.end - rod.start);
+    const int samples = static_cast<int>(std::ceil(length / (0.5 * space.reach))) + 1;
+    std::vector<std::int64_t> seen;
+    for (int s = 0; s < samples; ++s) {
+      const Vec3 at = rod.start + (static_cast<double>(s) / std::max(1, samples - 1)) * (rod.end - rod.start);
+      grid.near(at, [&](std::int64_t i) {
+        if (i == rod.a || i == rod.b || directions[i].empty()) return;
+        if (std::find(seen.begin(), seen.end(), i) != seen.end()) return;
+        seen.push_back(i);
+        if (!space.meets_rod(i, rod)) return;
+        const double largest = largest_clear_reach(min_reach, p.reach, [&](double r) {
+          return ConnectorSpace(f, directions, p, r).meets_rod(i, rod);
+        });
+        fail_input("reach", "the connector at ball " + std::to_string(i) + " would meet the rod of beam " +
+                                std::to_string(rod.beam) + " (balls " + std::to_string(rod.a) + " and " +
+                                std::to_string(rod.b) + "), which does not end there (reach " + num(p.reach) +
+                                " rod radii)" + fix(largest));
+      });
+    }
+  }
+}
 }  // namespace
 
 void check_connector_parameters(const ConnectorParameters& p) {
@@ -250,6 +424,7 @@ ConnectorPlan plan_connectors(const FlatLattice& f, const ConnectorParameters& p
   plan.max_reach = limits.max_reach;
   find_families(f, directions, plan);
   make_rods(f, depths, plan);
+  check_clashes(f, directions, plan, limits.min_reach);
   return plan;
 }
 
