@@ -10,7 +10,7 @@
 #include <cmath>
 
 #include "steady/core/constants.hpp"
-#include "steady/core/segment_distance.hpp"
+#include "core/segment_distance.hpp"
 
 namespace steady::bridges {
 

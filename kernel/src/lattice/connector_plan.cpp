@@ -10,7 +10,7 @@
 
 #include "lattice/direction_sets.hpp"
 #include "steady/core/errors.hpp"
-#include "steady/core/segment_distance.hpp"
+#include "core/segment_distance.hpp"
 
 namespace steady {
 

@@ -1,6 +1,6 @@
 #pragma once
-// Distances between points and segments: the capsule tests (a capsule is the set within a radius of a segment)
-// of the bridges' routes and the connectors' clashes.
+// Internal: distances between points and segments, for the capsule tests (a capsule is the set within a radius of
+// a segment) of the bridges' routes and the connectors' clashes.
 #include <algorithm>
 
 #include "steady/core/vec.hpp"
