@@ -10,6 +10,7 @@
 
 #include "lattice/direction_sets.hpp"
 #include "steady/core/errors.hpp"
+#include "core/cell_grid.hpp"
 #include "core/segment_distance.hpp"
 
 namespace steady {
@@ -271,38 +272,6 @@ struct ConnectorSpace {
   }
 };
 
-// Node centers in cells of twice the reach: a connector's neighbours (and the rods near a point) are in the 27 cells
-// about it.
-class NodeGrid {
- public:
-  NodeGrid(const FlatLattice& f, double cell) : cell_(cell) {
-    for (std::int64_t i = 0; i < f.ball_count(); ++i) cells_[key(cell_of(f.balls[i].center))].push_back(i);
-  }
-  template <class Visit>
-  void near(const Vec3& p, Visit&& visit) const {
-    const auto c = cell_of(p);
-    for (std::int64_t dx = -1; dx <= 1; ++dx)
-      for (std::int64_t dy = -1; dy <= 1; ++dy)
-        for (std::int64_t dz = -1; dz <= 1; ++dz) {
-          const auto it = cells_.find(key({c[0] + dx, c[1] + dy, c[2] + dz}));
-          if (it != cells_.end())
-            for (const std::int64_t i : it->second) visit(i);
-        }
-  }
-
- private:
-  std::array<std::int64_t, 3> cell_of(const Vec3& p) const {
-    return {static_cast<std::int64_t>(std::floor(p.x / cell_)), static_cast<std::int64_t>(std::floor(p.y / cell_)),
-            static_cast<std::int64_t>(std::floor(p.z / cell_))};
-  }
-  static std::uint64_t key(const std::array<std::int64_t, 3>& c) {
-    return (static_cast<std::uint64_t>(c[0] & 0x1fffff) << 42) | (static_cast<std::uint64_t>(c[1] & 0x1fffff) << 21) |
-           static_cast<std::uint64_t>(c[2] & 0x1fffff);
-  }
-  double cell_;
-  std::unordered_map<std::uint64_t, std::vector<std::int64_t>> cells_;
-};
-
 // The largest reach (rod radii, above `lowest`) at which `clashes(reach)` no longer holds, by bisection (a longer
 // reach only lengthens the arms); `lowest` itself when even that clashes.
 template <class Clashes>
@@ -320,15 +289,18 @@ void check_clashes(const FlatLattice& f, const std::vector<std::vector<Vec3>>& d
                    double min_reach) {
   const ConnectorParameters& p = plan.parameters;
   const ConnectorSpace space(f, directions, p, p.reach);
-  const NodeGrid grid(f, 2.0 * space.reach);
+  // Node centers in cells of twice the reach: a connector's neighbours, and the nodes near a point of a rod, are in
+  // the 27 cells about it.
+  CellGrid<std::int64_t> grid(2.0 * space.reach);
+  for (std::int64_t i = 0; i < f.ball_count(); ++i) grid.add(f.balls[i].center, i);
   const auto fix = [&](double largest) {
     return largest > min_reach ? "; the largest reach that clears them is " + num(largest) + " rod radii"
                                : "; no reach clears them: use a thinner rod or sleeve, or move the nodes apart";
   };
   for (std::int64_t i = 0; i < f.ball_count(); ++i) {
     if (directions[i].empty()) continue;
-    grid.near(f.balls[i].center, [&](std::int64_t j) {
-      if (j <= i || directions[j].empty() || !space.meets_connector(i, j)) return;
+    grid.any_near(f.balls[i].center, [&](std::int64_t j) {
+      if (j <= i || directions[j].empty() || !space.meets_connector(i, j)) return false;
       const double largest = largest_clear_reach(min_reach, p.reach, [&](double r) {
         return ConnectorSpace(f, directions, p, r).meets_connector(i, j);
       });
@@ -343,11 +315,11 @@ void check_clashes(const FlatLattice& f, const std::vector<std::vector<Vec3>>& d
     std::vector<std::int64_t> seen;
     for (int s = 0; s < samples; ++s) {
       const Vec3 at = rod.start + (static_cast<double>(s) / std::max(1, samples - 1)) * (rod.end - rod.start);
-      grid.near(at, [&](std::int64_t i) {
-        if (i == rod.a || i == rod.b || directions[i].empty()) return;
-        if (std::find(seen.begin(), seen.end(), i) != seen.end()) return;
+      grid.any_near(at, [&](std::int64_t i) {
+        if (i == rod.a || i == rod.b || directions[i].empty()) return false;
+        if (std::find(seen.begin(), seen.end(), i) != seen.end()) return false;
         seen.push_back(i);
-        if (!space.meets_rod(i, rod)) return;
+        if (!space.meets_rod(i, rod)) return false;
         const double largest = largest_clear_reach(min_reach, p.reach, [&](double r) {
           return ConnectorSpace(f, directions, p, r).meets_rod(i, rod);
         });

@@ -15,6 +15,7 @@
 #include <tuple>
 #include <unordered_map>
 
+#include "core/cell_grid.hpp"
 #include "lattice/circle_frames.hpp"
 #include "steady/core/errors.hpp"
 
@@ -251,32 +252,14 @@ Vec3 triple_point(const RadialHub& hub, const Vec3& w, const std::array<int, 3>&
 // Points within `radius` of each other, found through a grid of that cell size.
 class PointGrid {
  public:
-  explicit PointGrid(double cell) : cell_(cell) {}
-  void add(const Vec3& p) { cells_[key(cell_of(p))].push_back(p); }
+  explicit PointGrid(double cell) : grid_(cell) {}
+  void add(const Vec3& p) { grid_.add(p, p); }
   bool near(const Vec3& p, double radius) const {
-    const auto c = cell_of(p);
-    for (int dx = -1; dx <= 1; ++dx)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dz = -1; dz <= 1; ++dz) {
-          const auto it = cells_.find(key({c[0] + dx, c[1] + dy, c[2] + dz}));
-          if (it == cells_.end()) continue;
-          for (const Vec3& q : it->second)
-            if (glm::length(p - q) < radius) return true;
-        }
-    return false;
+    return grid_.any_near(p, [&](const Vec3& q) { return glm::length(p - q) < radius; });
   }
 
  private:
-  std::array<std::int64_t, 3> cell_of(const Vec3& p) const {
-    return {static_cast<std::int64_t>(std::floor(p.x / cell_)), static_cast<std::int64_t>(std::floor(p.y / cell_)),
-            static_cast<std::int64_t>(std::floor(p.z / cell_))};
-  }
-  static std::uint64_t key(const std::array<std::int64_t, 3>& c) {
-    return (static_cast<std::uint64_t>(c[0] & 0x1fffff) << 42) | (static_cast<std::uint64_t>(c[1] & 0x1fffff) << 21) |
-           static_cast<std::uint64_t>(c[2] & 0x1fffff);
-  }
-  double cell_;
-  std::unordered_map<std::uint64_t, std::vector<Vec3>> cells_;
+  CellGrid<Vec3> grid_;
 };
 
 // The triangulation of sphere_points(spacing), made once per spacing in the process: every crowded hub at one
