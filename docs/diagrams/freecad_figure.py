@@ -1,5 +1,6 @@
 """What the FreeCAD figure scripts share: this checkout's module and workbench first on the path (not a copy
-FreeCAD loaded at start), and the view saved as a palette PNG (a third of the bytes, no visible change)."""
+FreeCAD loaded at start), the view saved as a palette PNG (a third of the bytes, no visible change), and the run
+that quits FreeCAD after drawing."""
 import os
 import sys
 
@@ -25,3 +26,11 @@ def save_view(path, width=1200, height=900):
     from PIL import Image
     Image.open(path).convert("RGB").quantize(colors=128).save(path, optimize=True)
     print(path)
+
+
+def run(main):
+    """Calls main(), then quits FreeCAD whatever happened (closing its window would ask about documents)."""
+    try:
+        main()
+    finally:
+        os._exit(0)

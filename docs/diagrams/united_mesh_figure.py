@@ -9,7 +9,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from freecad_figure import ROOT, save_view, use_checkout  # noqa: E402
+from freecad_figure import ROOT, run, save_view, use_checkout  # noqa: E402
 
 use_checkout("tests/python")
 
@@ -44,7 +44,4 @@ def main():
     FreeCAD.closeDocument(doc.Name)
 
 
-try:
-    main()
-finally:
-    os._exit(0)  # quits FreeCAD (closing its window would ask about documents)
+run(main)
