@@ -359,15 +359,28 @@ TEST(Connectors, StepFilesReadBackWithTheirSolidsAndPlacements) {
   std::filesystem::remove(path);
 }
 
+// The message with which plan_connectors refuses the lattice, or "" when it makes the plan.
+std::string refusal(const FlatLattice& f, const ConnectorParameters& p) {
+  try {
+    plan_connectors(f, p);
+    return "";
+  } catch (const InvalidInput& e) {
+    return e.what();
+  }
+}
+
+// The reach a clash's refusal advises ("the largest reach that clears them is X"), or NaN when it gives none.
+double advised_reach(const std::string& message) {
+  const std::string advice = "the largest reach that clears them is ";
+  const auto at = message.find(advice);
+  return at == std::string::npos ? NAN : std::stod(message.substr(at + advice.size()));
+}
+
 TEST(Connectors, BadParametersAreRefusedByName) {
   const FlatLattice f = test::grid_lattice(2);
   auto refuses = [&](ConnectorParameters p, const std::string& field) {
-    try {
-      plan_connectors(f, p);
-      ADD_FAILURE() << "accepted, expected an error naming " << field;
-    } catch (const InvalidInput& e) {
-      EXPECT_EQ(std::string(e.what()).rfind(field + ":", 0), 0u) << e.what();
-    }
+    const std::string m = refusal(f, p);
+    EXPECT_EQ(m.rfind(field + ":", 0), 0u) << (m.empty() ? "accepted, expected an error naming " + field : m);
   };
   for (double bad : {0.0, -0.1, std::nan(""), HUGE_VAL}) {
     ConnectorParameters p = parameters(0.1);
@@ -399,17 +412,13 @@ TEST(Connectors, ATooShortBeamIsNamedWithTheLargestReachThatFits) {
   // Two beams from ball 0: a long one and one of length 0.4 (to ball 2).
   const FlatLattice f = make_flat_lattice({{{0, 0, 0}, 0.1}, {{3, 0, 0}, 0.1}, {{0, 0.4, 0}, 0.1}},
                                           {{0, 1, 0.05, 0.05}, {0, 2, 0.05, 0.05}});
-  try {
-    // Reach 2.5 rod radii: each sleeve runs sqrt(2.5^2 - 1) 0.1 = 0.229 along the beam, more than half of it.
-    plan_connectors(f, parameters(0.1));
-    ADD_FAILURE() << "accepted";
-  } catch (const InvalidInput& e) {
-    const std::string m = e.what();
-    EXPECT_EQ(m.rfind("reach:", 0), 0u) << m;
-    EXPECT_NE(m.find("beam 1 (balls 0 and 2, length 0.4)"), std::string::npos) << m;
-    // Each sleeve may run at most half the beam: sqrt(reach^2 - 1) 0.1 < 0.2, reach < sqrt(5) = 2.23607.
-    EXPECT_NE(m.find("largest reach that fits it is 2.23607"), std::string::npos) << m;
-  }
+  // Reach 2.5 rod radii: each sleeve runs sqrt(2.5^2 - 1) 0.1 = 0.229 along the beam, more than half of it.
+  const std::string m = refusal(f, parameters(0.1));
+  ASSERT_FALSE(m.empty()) << "accepted";
+  EXPECT_EQ(m.rfind("reach:", 0), 0u) << m;
+  EXPECT_NE(m.find("beam 1 (balls 0 and 2, length 0.4)"), std::string::npos) << m;
+  // Each sleeve may run at most half the beam: sqrt(reach^2 - 1) 0.1 < 0.2, reach < sqrt(5) = 2.23607.
+  EXPECT_NE(m.find("largest reach that fits it is 2.23607"), std::string::npos) << m;
 }
 
 // Whether a point belongs to the connector at `center` (rod radius 0.1, the parameters' defaults: sleeve 1.6,
@@ -448,15 +457,11 @@ TEST(Connectors, ClashesWithOtherNodesRodsAndConnectorsAreNamed) {
   const auto in_rod = [](const Vec3& q) { return std::hypot(q.y, q.z) <= 0.1 && q.x >= 0.0 && q.x <= 10.0; };
   EXPECT_TRUE(grid_finds_common_point({4.8, 0.0, -0.1}, {5.2, 0.2, 0.1}, 0.005,
                                       [&](const Vec3& q) { return in_connector(q, {5, 0.25, 0}, {up}); }, in_rod));
-  try {
-    plan_connectors(rod_clash, p);
-    ADD_FAILURE() << "accepted";
-  } catch (const InvalidInput& e) {
-    const std::string m = e.what();
-    EXPECT_EQ(m.rfind("reach:", 0), 0u) << m;
-    EXPECT_NE(m.find("connector at ball 2 would meet the rod of beam 0 (balls 0 and 1)"), std::string::npos) << m;
-    EXPECT_NE(m.find("no reach clears them"), std::string::npos) << m;  // the core alone reaches the rod
-  }
+  const std::string m = refusal(rod_clash, p);
+  ASSERT_FALSE(m.empty()) << "accepted";
+  EXPECT_EQ(m.rfind("reach:", 0), 0u) << m;
+  EXPECT_NE(m.find("connector at ball 2 would meet the rod of beam 0 (balls 0 and 1)"), std::string::npos) << m;
+  EXPECT_NE(m.find("no reach clears them"), std::string::npos) << m;  // the core alone reaches the rod
   // 0.3 away the core clears the rod (0.168 + 0.1 < 0.3), the brute force finds no common point, and the plan is made.
   const FlatLattice apart = make_flat_lattice(
       {{{0, 0, 0}, 0.1}, {{10, 0, 0}, 0.1}, {{5, 0.3, 0}, 0.1}, {{5, 10, 0}, 0.1}}, {{0, 1, 0.05, 0.05}, {2, 3, 0.05, 0.05}});
@@ -481,36 +486,25 @@ TEST(Connectors, ClashesWithOtherNodesRodsAndConnectorsAreNamed) {
       EXPECT_NO_THROW(plan_connectors(pair(gap), p)) << gap;
       continue;
     }
-    try {
-      plan_connectors(pair(gap), p);
-      ADD_FAILURE() << "accepted";
-    } catch (const InvalidInput& e) {
-      const std::string m = e.what();
-      EXPECT_NE(m.find("the connectors at balls 0 and 1 would meet"), std::string::npos) << m;
-      const auto at = m.find("the largest reach that clears them is ");
-      ASSERT_NE(at, std::string::npos) << m;
-      const double largest = std::stod(m.substr(at + 38));
-      EXPECT_GT(largest, 1.6 * 1.05);
-      EXPECT_LT(largest, 2.5);
-      // Following the advice: at that reach the two connectors clear; each rod then still passes the other node's
-      // arm (the rods cross there), named with its own largest reach; following that too gives a plan.
-      double reach = 0.99 * largest;
-      int fixes = 0;
-      for (; fixes < 4; ++fixes) {
-        try {
-          plan_connectors(pair(gap), parameters(0.1, 1.6, reach));
-          break;
-        } catch (const InvalidInput& again) {
-          const std::string next = again.what();
-          EXPECT_EQ(next.find("the connectors at balls 0 and 1"), std::string::npos) << next;
-          const auto where = next.find("the largest reach that clears them is ");
-          ASSERT_NE(where, std::string::npos) << next;
-          const double fix = std::stod(next.substr(where + 38));
-          ASSERT_LT(fix, reach) << next;
-          reach = 0.99 * fix;
-        }
-      }
-      EXPECT_LT(fixes, 4);
+    const std::string first = refusal(pair(gap), p);
+    ASSERT_FALSE(first.empty()) << "accepted";
+    EXPECT_NE(first.find("the connectors at balls 0 and 1 would meet"), std::string::npos) << first;
+    const double largest = advised_reach(first);
+    ASSERT_FALSE(std::isnan(largest)) << first;
+    EXPECT_GT(largest, 1.6 * 1.05);
+    EXPECT_LT(largest, 2.5);
+    // Following the advice: at that reach the two connectors clear; each rod then still passes the other node's
+    // arm (the rods cross there), named with its own largest reach; following that too gives a plan.
+    double reach = 0.99 * largest;
+    int fixes = 0;
+    for (std::string next = refusal(pair(gap), parameters(0.1, 1.6, reach)); !next.empty();
+         next = refusal(pair(gap), parameters(0.1, 1.6, reach))) {
+      ASSERT_LT(++fixes, 4) << next;  // a plan within three more pieces of advice
+      EXPECT_EQ(next.find("the connectors at balls 0 and 1"), std::string::npos) << next;
+      const double fix = advised_reach(next);
+      ASSERT_FALSE(std::isnan(fix)) << next;
+      ASSERT_LT(fix, reach) << next;
+      reach = 0.99 * fix;
     }
   }
 }
@@ -520,14 +514,10 @@ TEST(Connectors, RodsTooCloseForTheReachAreNamedWithTheSmallestReach) {
   const double a = 20.0 * M_PI / 180.0;
   const FlatLattice f = make_flat_lattice({{{0, 0, 0}, 0.1}, {{3, 0, 0}, 0.1}, {{3 * std::cos(a), 3 * std::sin(a), 0}, 0.1}},
                                           {{0, 1, 0.05, 0.05}, {0, 2, 0.05, 0.05}});
-  try {
-    plan_connectors(f, parameters(0.1));
-    ADD_FAILURE() << "accepted";
-  } catch (const InvalidInput& e) {
-    const std::string m = e.what();
-    EXPECT_EQ(m.rfind("reach:", 0), 0u) << m;
-    EXPECT_NE(m.find("at ball 0"), std::string::npos) << m;
-  }
+  const std::string m = refusal(f, parameters(0.1));
+  ASSERT_FALSE(m.empty()) << "accepted";
+  EXPECT_EQ(m.rfind("reach:", 0), 0u) << m;
+  EXPECT_NE(m.find("at ball 0"), std::string::npos) << m;
   const ConnectorPlan plan = [&] {
     ConnectorParameters p = parameters(0.1, 1.6, 6.0);
     return plan_connectors(f, p);
