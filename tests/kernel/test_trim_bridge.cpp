@@ -230,6 +230,26 @@ std::pair<double, double> box_monte_carlo(const FlatLattice& bridged, const Test
   return {frac * box_volume, std::sqrt(frac * (1 - frac) / samples) * box_volume};
 }
 
+// The bridge trim of `f` into `body`, with the lines it logged; checked to be one valid solid.
+struct BridgedPart {
+  TrimResult result;
+  std::vector<std::string> messages;
+  bool logged(const std::string& text) const {
+    return std::any_of(messages.begin(), messages.end(),
+                       [&](const std::string& m) { return m.find(text) != std::string::npos; });
+  }
+};
+BridgedPart bridge_trim(const FlatLattice& f, const TopoDS_Shape& body) {
+  BridgedPart out;
+  TrimOptions o;
+  o.policy = TrimPolicy::Bridge;
+  o.report = [&](const std::string& m) { out.messages.push_back(m); };
+  out.result = trim_lattice(f, body, o);
+  EXPECT_TRUE(is_valid(out.result.part)) << validity_report(out.result.part);
+  EXPECT_EQ(solid_count(out.result.part), 1);
+  return out;
+}
+
 // Hub A keeps a beam to hub K and loses one to X outside the box; its nearest wall point (1, 0, 0) lies beyond
 // K, so that bridge would run through K's ball. It is rerouted: the rings at 10 and 20 degrees about +x still pass
 // too close to K (0.6 sin 20 < 0.15 + 0.1), the first direction of the 30-degree ring is clear and shorter than
@@ -261,21 +281,14 @@ TEST(TrimBridge, ABridgeThroughAnotherHubIsRerouted) {
   nearest.end = Vec3(1.0 + 1.5 * b.radius, 0, 0);
   EXPECT_LT(brute_force_clearance(f, plan.kept, nearest), 0.0);
 
-  TrimOptions o;
-  o.policy = TrimPolicy::Bridge;
-  std::vector<std::string> messages;
-  o.report = [&](const std::string& m) { messages.push_back(m); };
-  const TrimResult r = trim_lattice(f, box.shape(), o);
-  EXPECT_TRUE(is_valid(r.part)) << validity_report(r.part);
-  EXPECT_EQ(solid_count(r.part), 1);
+  const BridgedPart bridged = bridge_trim(f, box.shape());
+  const TrimResult& r = bridged.result;
   EXPECT_EQ(r.stats.kept_hubs, 2);
   EXPECT_EQ(r.stats.lost_neighbour_hubs, 1);
   EXPECT_EQ(r.stats.bridges, 1);
   EXPECT_EQ(r.stats.rerouted_bridges, 1);
   EXPECT_EQ(r.stats.blocked_bridges, 0);
-  EXPECT_TRUE(std::any_of(messages.begin(), messages.end(), [](const std::string& m) {
-    return m.find("bridge from hub 0 rerouted") != std::string::npos;
-  }));
+  EXPECT_TRUE(bridged.logged("bridge from hub 0 rerouted"));
   for (std::int64_t i : plan.kept) EXPECT_TRUE(part_contains(r.part, f.balls[i].center)) << "hub " << i;
   const auto [estimate, sigma] = box_monte_carlo(plan.lattice, box, {-0.3, -0.3, -0.3}, {1.0, 0.3, 1.0}, 200000);
   const double volume = shape_volume(r.part);
@@ -338,19 +351,13 @@ TEST(TrimBridge, AHubBoxedInByKeptHubsStaysBlocked) {
     ASSERT_LT(least, 0.0) << "a free direction: " << u.x << " " << u.y << " " << u.z;
   }
 
-  TrimOptions o;
-  o.policy = TrimPolicy::Bridge;
-  std::vector<std::string> messages;
-  o.report = [&](const std::string& m) { messages.push_back(m); };
-  const TrimResult r = trim_lattice(f, box.shape(), o);
-  EXPECT_TRUE(is_valid(r.part)) << validity_report(r.part);
-  EXPECT_EQ(solid_count(r.part), 1);
+  const BridgedPart bridged = bridge_trim(f, box.shape());
+  const TrimResult& r = bridged.result;
   EXPECT_EQ(r.stats.kept_hubs, 27);
   EXPECT_EQ(r.stats.bridges, 0);
   EXPECT_EQ(r.stats.rerouted_bridges, 0);
   EXPECT_EQ(r.stats.blocked_bridges, 1);
-  EXPECT_TRUE(std::any_of(messages.begin(), messages.end(),
-                          [](const std::string& m) { return m.find("no bridge from hub 0") != std::string::npos; }));
+  EXPECT_TRUE(bridged.logged("no bridge from hub 0"));
   const auto [estimate, sigma] = box_monte_carlo(plan.lattice, box, Vec3(-0.7), Vec3(0.7), 100000);
   const double volume = shape_volume(r.part);
   EXPECT_NEAR(volume, estimate, 4 * sigma);
@@ -367,11 +374,7 @@ TEST(TrimBridge, AHubOnTheMedialAxisTakesOneNearestPoint) {
   EXPECT_TRUE(plan.bridges[0].ambiguous);
   EXPECT_NEAR(std::hypot(plan.bridges[0].wall.x, plan.bridges[0].wall.y), 1.0, 1e-7);
   EXPECT_NEAR(plan.bridges[0].wall.z, 0.0, 1e-7);
-  TrimOptions o;
-  o.policy = TrimPolicy::Bridge;
-  const TrimResult r = trim_lattice(f, body, o);
-  EXPECT_TRUE(is_valid(r.part)) << validity_report(r.part);
-  EXPECT_EQ(solid_count(r.part), 1);
+  const TrimResult r = bridge_trim(f, body).result;
   EXPECT_EQ(r.stats.ambiguous_bridges, 1);
   // The ball and the bridge, cut flush at the wall: between the ball plus the bridge's cylinder to the wall
   // (overlap counted twice) and the ball alone plus the part of that cylinder outside the ball.
