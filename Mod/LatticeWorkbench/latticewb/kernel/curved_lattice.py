@@ -81,18 +81,12 @@ def _turned(obj):
     return ", ".join(name for name, k in zip(TURNS, turns(obj)) if k)
 
 
-def _sense(angle, other):
-    """+1 or -1: the way a direction turns about the kernel's axis (its principal angle), or when it does not turn,
-    the way the other direction does; +1 when neither turns."""
-    return -1 if angle < 0.0 or (angle == 0.0 and other < 0.0) else 1
-
-
 def branches(principal, turns_uv):
     """The kernel's branches (k_u, k_v) for TurnsU, TurnsV on the map with principal angles: each turn goes on the
     way that direction already turns from A (toward D for U, toward B for V), so a positive TurnsU always lengthens
     the U side by whole turns and -1 takes the other way round (a quarter turn becomes three quarters)."""
     w_u, w_v = principal.log_u.imag, principal.log_v.imag
-    return turns_uv[0] * _sense(w_u, w_v), turns_uv[1] * _sense(w_v, w_u)
+    return turns_uv[0] * curved_ring.turn_sense(w_u, w_v), turns_uv[1] * curved_ring.turn_sense(w_v, w_u)
 
 
 def becots_map(obj, corners=None):

@@ -18,6 +18,12 @@ SAME_BALL = 1e-6
 DIRECTIONS = "UV"
 
 
+def turn_sense(angle, other):
+    """+1 or -1: the way a direction turns about the axis (its principal angle), or when it does not turn, the way
+    the other direction does; +1 when neither turns. Whole turns (TurnsU, TurnsV) are added this way."""
+    return -1 if angle < 0.0 or (angle == 0.0 and other < 0.0) else 1
+
+
 def _group_balls(lattice, i, j, k):
     return [lattice.ball(i, j, k, n) for n in range(lattice.node_count)]
 

@@ -19,6 +19,8 @@ import math
 
 import FreeCAD
 
+from latticewb.kernel import curved_ring
+
 KINDS = {"Plane": "plane", "Cylinder": "cylinder", "Cone": "cone"}
 
 
@@ -115,8 +117,7 @@ def _about(axis, a, b):
 def _with_turns(angle, other, turns):
     """The principal angle lengthened by whole turns, each the way the side already turns (or the other side does,
     when it does not turn): as TurnsU and TurnsV on a free CurvedLattice."""
-    sense = -1.0 if angle < 0.0 or (angle == 0.0 and other < 0.0) else 1.0
-    return angle + 2.0 * math.pi * turns * sense
+    return angle + 2.0 * math.pi * turns * curved_ring.turn_sense(angle, other)
 
 
 def lay_on_face(obj, face, label, corners, connectivity, turns, planar_map):
