@@ -90,24 +90,33 @@ std::vector<double> core_collars(const std::vector<CoreStump>& stumps, CoreKind 
 // plane where the cone touches its end ball (axial r0 sin_phi) and the collar; the ray meets it in an interval,
 // and the far end counts when the interval starts inside the ball (it always does: the cone lies outside the
 // ball, so a ray leaving the ball before that plane cannot come back into the cone).
-double stump_reach(const CoreStump& s, double collar, const Vec3& w) {
-  const double k = glm::dot(glm::normalize(s.direction), w);
-  const double c = std::sqrt((1.0 - s.sin_phi) * (1.0 + s.sin_phi));
-  const double start = s.end_radius * s.sin_phi;  // axial position of the end ball's tangent plane
+StumpReach::StumpReach(const CoreStump& s, double collar)
+    : axis_(glm::normalize(s.direction)),
+      sin_phi_(s.sin_phi),
+      cos_phi_(std::sqrt((1.0 - s.sin_phi) * (1.0 + s.sin_phi))),
+      end_radius_(s.end_radius),
+      start_(s.end_radius * s.sin_phi),  // axial position of the end ball's tangent plane
+      collar_(collar),
+      // k <= 0 gives 0 when start > 0, and 0 < k < start puts the interval's start beyond the ball
+      quick_zero_(start_ > 0.0 ? start_ * (1.0 - 1e-9) : -std::numeric_limits<double>::infinity()) {}
+
+double StumpReach::reach(double k) const {
   double lo = 0.0, hi = std::numeric_limits<double>::infinity();
   // axial = rho k >= start
-  if (k > 0.0) lo = std::max(lo, start / k);
-  else if (k < 0.0) hi = std::min(hi, start / k);
-  else if (start > 0.0) return 0.0;
+  if (k > 0.0) lo = std::max(lo, start_ / k);
+  else if (k < 0.0) hi = std::min(hi, start_ / k);
+  else if (start_ > 0.0) return 0.0;
   // axial <= collar
-  if (k > 0.0) hi = std::min(hi, collar / k);
+  if (k > 0.0) hi = std::min(hi, collar_ / k);
   // radial <= radius(axial): rho (c sqrt(1 - k^2) + k sin_phi) <= r0
-  const double denom = c * std::sqrt(std::max(0.0, 1.0 - k * k)) + k * s.sin_phi;
-  if (denom > 0.0) hi = std::min(hi, s.end_radius / denom);
-  else if (s.end_radius < 0.0) return 0.0;
+  const double denom = cos_phi_ * std::sqrt(std::max(0.0, 1.0 - k * k)) + k * sin_phi_;
+  if (denom > 0.0) hi = std::min(hi, end_radius_ / denom);
+  else if (end_radius_ < 0.0) return 0.0;
   if (!(hi >= lo) || lo > 1.0) return 0.0;
   return hi;
 }
+
+double stump_reach(const CoreStump& s, double collar, const Vec3& w) { return StumpReach(s, collar)(w); }
 
 
 // A crowded hub's stumps for its core, from its caps (in the hub's canonical frame, or in the world frame scaled

@@ -85,6 +85,27 @@ constexpr double kMaxCollarPosition = 50.0;
 // max(1, max over the stumps of stump_reach) along every direction outside the collars' cones.
 double stump_reach(const CoreStump& s, double collar, const Vec3& w);
 
+// stump_reach for many directions (a mesh template asks it millions of times): the stump's unit axis and slope
+// worked out once, and a direction on the ball's side of the plane where the cone touches its end ball answered
+// by one dot product (the full formula gives 0 there too).
+class StumpReach {
+ public:
+  StumpReach(const CoreStump& s, double collar);
+  double operator()(const Vec3& w) const {
+    const double k = glm::dot(axis_, w);
+    if (k < quick_zero_) return 0.0;
+    return reach(k);
+  }
+  const Vec3& axis() const { return axis_; }
+  double cos_phi() const { return cos_phi_; }
+
+ private:
+  double reach(double k) const;
+  Vec3 axis_;
+  double sin_phi_, cos_phi_, end_radius_, start_, collar_;
+  double quick_zero_;  // below this k the reach is 0 (a margin under start, so rounding cannot tell otherwise)
+};
+
 // The hub's volume up to its collars, by integrating the radial distance of its boundary over directions from
 // the ball's center (the core is star-shaped from there): an independent check of the cores in the tests.
 double core_volume_by_quadrature(const std::vector<CoreStump>& stumps, const std::vector<double>& collars,

@@ -1,9 +1,5 @@
 #include "mesh/hub_tessellation.hpp"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Surface_mesh.h>
-#include <CGAL/convex_hull_3.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -17,15 +13,12 @@
 
 #include "core/cell_grid.hpp"
 #include "lattice/circle_frames.hpp"
+#include "mesh/sphere_hull.hpp"
 #include "steady/core/errors.hpp"
 
 namespace steady {
 
 namespace {
-
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point = Kernel::Point_3;
-using Mesh = CGAL::Surface_mesh<Point>;
 
 [[noreturn]] void internal_error(const std::string& what) { throw std::runtime_error("mesh: " + what); }
 
@@ -61,100 +54,6 @@ std::vector<Vec3> circle_points(const Vec3& direction, double position, double r
   return points;
 }
 
-// Four or more points of a sphere in one plane (symmetric hubs have them; every ring is one) can be triangulated in
-// several ways, and the hull picks one depending on how it was run (one thread or two gave different meshes). Each
-// such planar facet (adjacent triangles whose corners are coplanar) is triangulated again as the fan from its
-// smallest index: a choice that depends on the points alone.
-void canonical_facets(std::vector<Triangle>& triangles, const std::vector<Point>& points) {
-  // directed edge (a << 32 | b) -> triangle; only looked up, so hashed
-  std::unordered_map<std::uint64_t, std::size_t> face_of;
-  face_of.reserve(3 * triangles.size());
-  const auto edge = [](std::uint32_t a, std::uint32_t b) { return static_cast<std::uint64_t>(a) << 32 | b; };
-  for (std::size_t f = 0; f < triangles.size(); ++f)
-    for (int k = 0; k < 3; ++k) face_of[edge(triangles[f][k], triangles[f][(k + 1) % 3])] = f;
-  std::vector<std::size_t> group(triangles.size());
-  for (std::size_t f = 0; f < triangles.size(); ++f) group[f] = f;
-  auto root = [&](std::size_t f) {
-    while (group[f] != f) f = group[f] = group[group[f]];
-    return f;
-  };
-  for (std::size_t f = 0; f < triangles.size(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t a = triangles[f][k], b = triangles[f][(k + 1) % 3], c = triangles[f][(k + 2) % 3];
-      const std::size_t g = face_of.at(edge(b, a));
-      std::uint32_t d = 0;
-      for (std::uint32_t v : triangles[g])
-        if (v != a && v != b) d = v;
-      if (CGAL::orientation(points[a], points[b], points[c], points[d]) == CGAL::COPLANAR) group[root(f)] = root(g);
-    }
-  std::map<std::size_t, std::vector<std::size_t>> facets;
-  for (std::size_t f = 0; f < triangles.size(); ++f) facets[root(f)].push_back(f);
-  std::vector<Triangle> out;
-  out.reserve(triangles.size());
-  for (const auto& [id, faces] : facets) {
-    if (faces.size() == 1) {
-      out.push_back(triangles[faces[0]]);
-      continue;
-    }
-    // The facet's boundary: its directed edges whose twin lies outside it, chained into the polygon.
-    std::map<std::uint32_t, std::uint32_t> next;
-    for (std::size_t f : faces)
-      for (int k = 0; k < 3; ++k) {
-        const std::uint32_t a = triangles[f][k], b = triangles[f][(k + 1) % 3];
-        if (root(face_of.at(edge(b, a))) != id) next[a] = b;
-      }
-    std::uint32_t start = next.begin()->first;  // the smallest index on the boundary
-    std::vector<std::uint32_t> polygon{start};
-    for (std::uint32_t v = next.at(start); v != start; v = next.at(v)) polygon.push_back(v);
-    if (polygon.size() != faces.size() + 2) internal_error("a planar facet of a hub's sphere is not a convex polygon");
-    for (std::size_t i = 1; i + 1 < polygon.size(); ++i) out.push_back({polygon[0], polygon[i], polygon[i + 1]});
-  }
-  triangles = std::move(out);
-}
-
-// The convex hull of unit vectors, as outward triangles of their indices: the sphere's Delaunay triangulation.
-// Every point of the sphere is a vertex of the hull (points closer than rounding would not be: an error).
-std::vector<Triangle> sphere_triangulation(const std::vector<Vec3>& directions) {
-  using Key = std::array<double, 3>;
-  // Only looked up, so hashed (on the bits, with -0 as 0 since they compare equal).
-  struct KeyHash {
-    std::size_t operator()(const Key& k) const {
-      std::size_t h = 0;
-      for (double d : k) h = h * 0x9E3779B97F4A7C15ULL + std::hash<double>()(d == 0.0 ? 0.0 : d);
-      return h;
-    }
-  };
-  std::vector<Point> points;
-  std::unordered_map<Key, std::uint32_t, KeyHash> index;
-  index.reserve(directions.size());
-  for (std::size_t i = 0; i < directions.size(); ++i) {
-    const Vec3& d = directions[i];
-    points.emplace_back(d.x, d.y, d.z);
-    index.emplace(Key{d.x, d.y, d.z}, static_cast<std::uint32_t>(i));
-  }
-  if (index.size() != points.size()) internal_error("two points of a hub's sphere coincide");
-  Mesh hull;
-  CGAL::convex_hull_3(points.begin(), points.end(), hull);
-  if (hull.number_of_vertices() != points.size()) internal_error("a point of a hub's sphere is not on its hull");
-  std::vector<Triangle> triangles;
-  triangles.reserve(hull.number_of_faces());
-  for (const auto f : hull.faces()) {
-    Triangle t;
-    int i = 0;
-    for (const auto v : CGAL::vertices_around_face(hull.halfedge(f), hull)) {
-      const Point& p = hull.point(v);
-      t[i++] = index.at(Key{p.x(), p.y(), p.z()});
-    }
-    triangles.push_back(t);
-  }
-  canonical_facets(triangles, points);
-  // Each triangle from its smallest index, the list sorted: the same points give the same triangles in the same
-  // order however the hull was built.
-  for (Triangle& t : triangles) std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
-  std::sort(triangles.begin(), triangles.end());
-  return triangles;
-}
-
 // Drops the faces of a sphere triangulation with all three corners on one ring (the ring's cap: every other point
 // lies outside it), checking that each ring of n points lost exactly the n - 2 triangles of its polygon.
 std::vector<Triangle> without_ring_caps(const std::vector<Triangle>& triangles, const std::vector<int>& ring_of,
@@ -178,18 +77,19 @@ std::vector<Triangle> without_ring_caps(const std::vector<Triangle>& triangles, 
 // The boundary of a crowded hub up to its collars, seen from the ball's center: along each direction w outside the
 // collars' cones, the piece (sphere or stump) that reaches farthest, and how far.
 struct RadialHub {
+  RadialHub(const std::vector<CoreStump>& stumps, const std::vector<double>& collars) : stumps(stumps) {
+    for (std::size_t k = 0; k < stumps.size(); ++k) reaches.emplace_back(stumps[k], collars[k]);
+  }
   const std::vector<CoreStump>& stumps;
-  const std::vector<double>& collars;
+  std::vector<StumpReach> reaches;
 
   static constexpr int kSphere = -1;
-  double reach(int piece, const Vec3& w) const {
-    return piece == kSphere ? 1.0 : stump_reach(stumps[piece], collars[piece], w);
-  }
+  double reach(int piece, const Vec3& w) const { return piece == kSphere ? 1.0 : reaches[piece](w); }
   int piece(const Vec3& w) const {
     int best = kSphere;
     double far = 1.0;
-    for (std::size_t k = 0; k < stumps.size(); ++k) {
-      const double r = stump_reach(stumps[k], collars[k], w);
+    for (std::size_t k = 0; k < reaches.size(); ++k) {
+      const double r = reaches[k](w);
       if (r > far) far = r, best = static_cast<int>(k);
     }
     return best;
@@ -204,13 +104,12 @@ struct RadialHub {
     double d = glm::length(p) - 1.0;
     for (std::size_t k = 0; k < stumps.size(); ++k) {
       const CoreStump& s = stumps[k];
-      const Vec3 axis = glm::normalize(s.direction);
+      const Vec3& axis = reaches[k].axis();
       const double x = glm::dot(p, axis);
       // Below the plane where the cone touches its end ball the ball covers; beyond the collar the beam goes on (the
       // strips continue the cone), so the cone counts there too.
       if (x < s.end_radius * s.sin_phi) continue;
-      const double cos_phi = std::sqrt((1.0 - s.sin_phi) * (1.0 + s.sin_phi));
-      d = std::min(d, cos_phi * (glm::length(p - x * axis) - s.radius_at(x)));  // to the cone's generator line
+      d = std::min(d, reaches[k].cos_phi() * (glm::length(p - x * axis) - s.radius_at(x)));  // to the cone's generator
     }
     return d;
   }
@@ -288,7 +187,7 @@ std::vector<Vec3> crease_points(const RadialHub& hub, const std::vector<Vec3>& a
       if (glm::dot(grid[i], axes[k]) > cos_limit[k]) piece[i] = kHole;
   }
   std::vector<Vec3> creases;
-  std::map<std::pair<std::uint32_t, std::uint32_t>, Vec3> on_edge;
+  std::unordered_map<std::uint64_t, Vec3> on_edge;  // edge (smaller << 32 | larger) -> its crossing
   for (const Triangle& t : fine_triangulation(fine)) {
     if (piece[t[0]] == kHole || piece[t[1]] == kHole || piece[t[2]] == kHole) continue;
     if (piece[t[0]] == piece[t[1]] && piece[t[1]] == piece[t[2]]) continue;
@@ -296,7 +195,7 @@ std::vector<Vec3> crease_points(const RadialHub& hub, const std::vector<Vec3>& a
     for (int e = 0; e < 3; ++e) {
       const std::uint32_t a = t[e], b = t[(e + 1) % 3];
       if (piece[a] == piece[b]) continue;
-      const auto key = std::minmax(a, b);
+      const std::uint64_t key = static_cast<std::uint64_t>(std::min(a, b)) << 32 | std::max(a, b);
       auto it = on_edge.find(key);
       if (it == on_edge.end()) {
         it = on_edge.emplace(key, crease_on_arc(hub, grid[a], grid[b], piece[a])).first;
@@ -327,12 +226,13 @@ std::vector<Triangle> refined_triangulation(std::vector<Vec3>& directions, std::
                                             const std::vector<Vec3>& ring_points, const Radius& radius,
                                             const Outside& outside, const InHole& in_hole, double tolerance) {
   std::vector<Vec3> position;
+  SphereHull hull(directions);
   for (int round = 0;; ++round) {
     for (std::size_t i = position.size(); i < directions.size(); ++i)
       position.push_back(ring_of[i] >= 0 ? ring_points[i] : radius(directions[i]) * directions[i]);
-    std::vector<Triangle> triangles = without_ring_caps(sphere_triangulation(directions), ring_of, rings);
+    std::vector<Triangle> triangles = without_ring_caps(hull.triangles(), ring_of, rings);
     if (round == kRefinementRounds) return triangles;
-    std::map<std::array<double, 3>, Vec3> added;
+    std::map<std::array<double, 3>, std::pair<Vec3, Triangle>> added;  // new direction -> it, and the triangle it refines
     for (const Triangle& t : triangles) {
       const Vec3 &q0 = position[t[0]], &q1 = position[t[1]], &q2 = position[t[2]];
       const Vec3 normal = glm::cross(q1 - q0, q2 - q0);
@@ -350,10 +250,12 @@ std::vector<Triangle> refined_triangulation(std::vector<Vec3>& directions, std::
         const double error = std::max(std::abs(glm::dot(radius(w) * w - q0, normal)) / area2, outside(point));
         if (error > worst) worst = error, at = w;
       }
-      if (worst > tolerance) added.emplace(std::array<double, 3>{at.x, at.y, at.z}, at);
+      if (worst > tolerance) added.emplace(std::array<double, 3>{at.x, at.y, at.z}, std::make_pair(at, t));
     }
     if (added.empty()) return triangles;
-    for (const auto& [key, w] : added) {
+    for (const auto& [key, refined] : added) {
+      const auto& [w, t] = refined;
+      hull.add(w, {t[0], t[1], t[2]});
       directions.push_back(w);
       ring_of.push_back(-1);
     }
@@ -396,14 +298,14 @@ HubTemplate tessellate_clean_hub(const std::vector<SphereCap>& caps, double tole
     out.loop_position.push_back(caps[k].exit);
     out.loop_radius.push_back(rho);
   }
-  // Sphere points clear of every cap by about half a spacing, so no sliver forms along a circle.
+  // Sphere points clear of every cap by about half a spacing, so no sliver forms along a circle (compared as
+  // cosines: the angle to the cap's axis above the cap's angle plus half a spacing).
+  std::vector<double> cos_clear;
+  for (const SphereCap& c : caps)
+    cos_clear.push_back(std::cos(std::min(M_PI, std::acos(std::clamp(c.exit, -1.0, 1.0)) + 0.5 * spacing)));
   for (const Vec3& p : sphere_points(spacing)) {
     bool clear = true;
-    for (const SphereCap& c : caps) {
-      const double cap_angle = std::acos(std::clamp(c.exit, -1.0, 1.0));
-      const double angle = std::acos(std::clamp(glm::dot(p, c.direction), -1.0, 1.0));
-      if (angle < cap_angle + 0.5 * spacing) clear = false;
-    }
+    for (std::size_t k = 0; k < caps.size() && clear; ++k) clear = glm::dot(p, caps[k].direction) < cos_clear[k];
     if (clear) {
       out.vertices.push_back(p);
       ring_of.push_back(-1);
@@ -423,7 +325,7 @@ HubTemplate tessellate_clean_hub(const std::vector<SphereCap>& caps, double tole
 
 HubTemplate tessellate_crowded_hub(const std::vector<CoreStump>& stumps, const std::vector<double>& collars,
                                    double tolerance) {
-  const RadialHub hub{stumps, collars};
+  const RadialHub hub(stumps, collars);
   // Directions start evenly spaced as on a clean hub; refinement adds them where the stumps curve more.
   std::vector<Vec3> axes;
   std::vector<double> collar_angle;
@@ -473,10 +375,14 @@ HubTemplate tessellate_crowded_hub(const std::vector<CoreStump>& stumps, const s
   };
   for (const Vec3& p : triples) keep(p);
   for (const Vec3& p : creases) keep(p);
+  std::vector<double> cos_clear, cos_collar;  // angles to the axes compared as cosines
+  for (double a : collar_angle) {
+    cos_clear.push_back(std::cos(std::min(M_PI, a + 0.5 * spacing)));
+    cos_collar.push_back(std::cos(a));
+  }
   for (const Vec3& p : sphere_points(spacing)) {
     bool clear = !dense.near(p, 0.5 * spacing);
-    for (std::size_t k = 0; k < axes.size() && clear; ++k)
-      clear = std::acos(std::clamp(glm::dot(p, axes[k]), -1.0, 1.0)) > collar_angle[k] + 0.5 * spacing;
+    for (std::size_t k = 0; k < axes.size() && clear; ++k) clear = glm::dot(p, axes[k]) < cos_clear[k];
     if (clear) {
       directions.push_back(p);
       ring_of.push_back(-1);
@@ -484,7 +390,7 @@ HubTemplate tessellate_crowded_hub(const std::vector<CoreStump>& stumps, const s
   }
   auto in_collar = [&](const Vec3& w) {
     for (std::size_t k = 0; k < axes.size(); ++k)
-      if (std::acos(std::clamp(glm::dot(w, axes[k]), -1.0, 1.0)) <= collar_angle[k]) return true;
+      if (glm::dot(w, axes[k]) >= cos_collar[k]) return true;
     return false;
   };
   ring_points.resize(directions.size());
