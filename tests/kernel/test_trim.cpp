@@ -187,6 +187,57 @@ TEST(Trim, CutsPlacedAnywhereBeyondTheStumpsStarts) {
   EXPECT_THROW(stump_starts(f, frustums, sel.beams, f.ball_count()), InvalidInput);
 }
 
+TEST(Trim, BothSidesOfAnOpenCutEndWhereTheFirstBuildCutTheBeam) {
+  // The trim builds the band first and the interior after it, the two sharing the circles of the open cuts
+  // between them (CutEdges). A cut off the middle (between crowded hubs' collars) must be the interior's cut too:
+  // built with it, the two sides glue into one valid solid of the volume the two hubs have when built together;
+  // built halfway on a circle that lies elsewhere (the FCC at 0.8 trimmed into a box, whose half-beams' seams
+  // spanned the wrong length and did not orient), the builder refuses instead of making an unorientable face.
+  const FlatLattice f = grid_lattice(3, 0.13);
+  const std::vector<BeamFrustum> frustums = beam_frustums(f);
+  const std::int64_t e = 0;  // from ball 0 to ball 1, along x
+  const std::int64_t a = f.beams[e].a, b = f.beams[e].b;
+  auto side = [&](std::int64_t ball) {
+    BrepSelection s;
+    s.balls.assign(f.ball_count(), 0);
+    s.balls[ball] = 1;
+    s.beams.assign(f.beam_count(), 0);
+    for (const std::int64_t* x = f.incident_begin(ball); x != f.incident_end(ball); ++x) s.beams[*x] = 1;
+    s.open_cuts.assign(f.beam_count(), 0);
+    s.open_cuts[e] = 1;
+    return s;
+  };
+  std::vector<char> both_beams = side(a).beams;
+  for (std::int64_t k = 0; k < f.beam_count(); ++k) both_beams[k] |= side(b).beams[k];
+  const double from = stump_starts(f, frustums, both_beams, a)[f.incident_slot(a, e)];
+  const double to = frustums[e].cone.length - stump_starts(f, frustums, both_beams, b)[f.incident_slot(b, e)];
+  ASSERT_LT(from, to);
+  std::vector<double> fractions(f.beam_count(), 0.5);
+  fractions[e] = (from + 0.2 * (to - from) - frustums[e].exit_a) / frustums[e].length();  // off the middle
+  BrepSelection band = side(a), interior = side(b);
+  band.cut_fractions = interior.cut_fractions = fractions;
+  CutEdges cuts;
+  std::vector<TopoDS_Face> faces = build_brep_pieces(f, band, cuts).faces;
+  const std::vector<TopoDS_Face> other = build_brep_pieces(f, interior, cuts).faces;
+  faces.insert(faces.end(), other.begin(), other.end());
+  const TopoDS_Shape glued = solids_from_faces(faces);
+  EXPECT_TRUE(is_valid(glued)) << validity_report(glued);
+  EXPECT_EQ(solid_count(glued), 1);
+  // The twin: both hubs in one build, the beam between them whole.
+  BrepSelection together = side(a);
+  together.balls[b] = 1;
+  together.beams = both_beams;
+  together.open_cuts.clear();
+  CutEdges none;
+  const double whole = test::occ_properties(solids_from_faces(build_brep_pieces(f, together, none).faces)).volume;
+  EXPECT_NEAR(test::occ_properties(glued).volume / whole, 1.0, 1e-9);
+  // The interior cut halfway on the band's circle off the middle: refused, never an unorientable face.
+  BrepSelection halfway = side(b);
+  CutEdges shared;
+  build_brep_pieces(f, band, shared);
+  EXPECT_THROW(build_brep_pieces(f, halfway, shared), std::logic_error);
+}
+
 TEST(Trim, CutsMovedOffAnObliqueBoundaryKeepClustersSmall) {
   // A box turned about two axes cuts the grid's beams obliquely: halfway along many beams between two boundary
   // hubs the cut's disk meets the box's faces, and the cut moves along the beam to a clear place instead of

@@ -58,6 +58,9 @@ constexpr double kTwoPi = 2.0 * M_PI;
 constexpr double kSameVertexAngle = 1e-9;
 // Below this |sin(half-angle)| a beam is a cylinder: OpenCASCADE refuses cones of (near) zero angle.
 constexpr double kCylinderSine = 1e-12;
+// A cut circle shared between two builds (band and interior of a trim) lies where both builds cut its beam: their
+// cut fractions are the same numbers, so only rounding separates the centres (relative to the beam's length).
+constexpr double kCutCircleMismatch = 1e-9;
 // Memory of one face with its edges, vertices, curves and pcurves (measured: 41,000 faces of a 30,000-beam lattice
 // took 209 MB, about 5 KB each; shared pcurves of similar hubs keep it there), with headroom.
 constexpr std::uint64_t kBytesPerFace = 8192;
@@ -956,6 +959,12 @@ void plan_beam(PieceBuild& b, std::int64_t e, const CutEdges& cut_edges) {
     auto found = cut_edges.find(e);
     if (found != cut_edges.end()) {
       const CutCircle& c = found->second;
+      // Shared with an earlier build: its half-beam's seam would otherwise span this build's cut while its
+      // vertices sit on that circle (an unorientable face; docs/brep.md, "open cuts at moved places").
+      const gp_Pnt at = c.curve->Location();
+      if (glm::length(Vec3(at.X(), at.Y(), at.Z()) - fr.cut_circle().center) > kCutCircleMismatch * fr.length())
+        throw std::logic_error("brep builder: beam " + std::to_string(e) +
+                               "'s shared cut circle lies elsewhere than this build's cut");
       ring_from_edges(w.cut, c.curve, c.params, c.vertices, c.edges);
     } else {
       const Circle cc = fr.cut_circle();

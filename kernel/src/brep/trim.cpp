@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <fstream>
 #include <stdexcept>
 #include <unordered_set>
 
@@ -12,6 +13,7 @@
 #include "brep/pcurve_pieces.hpp"
 #include "brep/loose_pieces.hpp"
 #include "brep/trim_phases.hpp"
+#include "steady/brep/brep_io.hpp"
 #include "steady/core/errors.hpp"
 #include "steady/query/clean_check.hpp"
 
@@ -63,6 +65,9 @@ BuiltHubs build_hubs(const FlatLattice& f, const HubRoles& roles, const CutPlan&
   sel.balls = roles.interior;
   sel.beams = roles.interior_beams;
   sel.open_cuts = roles.open_cuts;
+  // The open cuts' circles are the band's (shared through out.cuts): the interior's half-beams must end where
+  // the band put them (between crowded hubs' collars, or moved off the boundary), not halfway.
+  if (roles.has_band) sel.cut_fractions = plan.cut_fractions;
   sel.foreign = &roles.contacts;
   {
     Progress part(budget.progress(), budget.rest(weights.build_interior));
@@ -167,6 +172,8 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
   }
   {
     const auto check_clock = std::chrono::steady_clock::now();
+    if (!options.dump_directory.empty())  // the assembled part as checked, for study when the check refuses it
+      std::ofstream(options.dump_directory + "/assembled_part.brep") << brep_to_text(shape);
     check_trimmed_part(f, shape, stats.core_hubs);
     report(options, "trim: checked the assembled part in " + std::to_string(seconds_since(check_clock)) + " s");
   }
