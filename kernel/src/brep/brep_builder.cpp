@@ -740,7 +740,8 @@ void group_short_beams(PieceBuild& b) {
       members.push_back(std::move(m));
     }
     try {
-      fused[g] = fuse_hub_group(members, g, "of crowded nodes joined by beams too short for their collars");
+      Progress fuse(b.progress, 0);  // no share of the bar (set before the groups were known), but reports and stops
+      fused[g] = fuse_hub_group(members, g, "of crowded nodes joined by beams too short for their collars", fuse);
       built[g] = 1;
     } catch (const InvalidInput& error) {
       failures[g] = error.what();
@@ -848,7 +849,8 @@ void group_foreign_contacts(PieceBuild& b) {
                                   std::to_string(hub.stumps[s].first) + " than the beam has room for");
         members.push_back(std::move(m));
       }
-      fused[g] = fuse_hub_group(members, g, "whose elements meet elements of other nodes");
+      Progress fuse(b.progress, 0);  // as in group_short_beams
+      fused[g] = fuse_hub_group(members, g, "whose elements meet elements of other nodes", fuse);
     } catch (const InvalidInput& error) {
       failures[g] = error.what();
     }
