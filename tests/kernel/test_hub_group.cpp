@@ -46,17 +46,17 @@ struct Recorder {
 };
 
 // The Fuse of a group advances the build's Progress while it runs (OpenCASCADE's progress, through OccProgress):
-// a full run calls back many times. Before the Fuse starts, fuse_hub_group checks the progress once (the first
-// call), so a cancel at the second call is seen inside the Fuse: it throws Cancelled, with no call after the
-// cancelling one; a cancel at a later call too.
+// a full run calls back many times. Before the Fuse starts, fuse_hub_group checks the progress twice (once per
+// distinct core, here one, and after sampling), so a cancel at the third call is seen inside the Fuse: it throws
+// Cancelled, with no call after the cancelling one; a cancel at a later call too.
 TEST(HubGroup, TheFuseReportsProgressAndACancelInsideItThrowsCancelled) {
   const std::shared_ptr<const HubCore> ball = lone_ball_core();
   const std::vector<GroupMember> members = row_of_balls(ball, 24, 0.5, 0.3);
   Recorder full;
   const HubGroup group = fuse_hub_group(members, 0, "in a row", full.progress);
   EXPECT_FALSE(group.faces.IsNull());
-  ASSERT_GE(full.calls, 6u) << "the Fuse did not report its progress";
-  for (std::size_t stop : {std::size_t(2), full.calls / 2}) {
+  ASSERT_GE(full.calls, 20u) << "the Fuse did not report its progress";  // 1,561 measured; 5 without it
+  for (std::size_t stop : {std::size_t(3), full.calls / 2}) {
     Recorder r(stop);
     EXPECT_THROW(fuse_hub_group(members, 0, "in a row", r.progress), Cancelled) << "cancelled at call " << stop;
     EXPECT_EQ(r.calls, stop) << "a call after the cancel";
@@ -75,7 +75,7 @@ TEST(HubGroup, ABuildCancelledWhileItsGroupIsFusedThrowsCancelled) {
   EXPECT_TRUE(is_valid(b.shape)) << validity_report(b.shape);
   EXPECT_EQ(solid_count(b.shape), 1);
   EXPECT_NEAR(shape_volume(b.shape) / row_volume(24, 0.5, 0.3), 1.0, 1e-7);
-  ASSERT_GE(full.calls, 6u);
+  ASSERT_GE(full.calls, 20u);
   Recorder r(full.calls / 2);
   EXPECT_THROW(build_lattice_brep(f, SeamPreference::FewestCrossings, r.progress), Cancelled);
   EXPECT_EQ(r.calls, full.calls / 2);

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -244,9 +245,18 @@ HubGroup fuse_hub_group(const std::vector<GroupMember>& members, std::uint64_t s
   GroupBounds bounds;
   std::vector<TopoDS_Shape> placed;
   Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  // Members share cores (similar hubs): each closed core and its volume once. Measuring it for each member took
+  // 19 s of the 248 hubs of a BCC (5 x 5 x 5 cells, loaded machine), before the Fuse and out of a cancel's reach.
+  std::map<const HubCore*, std::pair<TopoDS_Solid, double>> closed_cores;
   for (const GroupMember& m : members) {
-    const TopoDS_Solid closed = closed_core(*m.core);
-    const double volume = solid_volume(closed) * m.radius * m.radius * m.radius;
+    auto [it, added] = closed_cores.try_emplace(m.core);
+    if (added) {
+      progress.check();
+      it->second.first = closed_core(*m.core);
+      it->second.second = solid_volume(it->second.first);
+    }
+    const TopoDS_Solid& closed = it->second.first;
+    const double volume = it->second.second * m.radius * m.radius * m.radius;
     bounds.largest = std::max(bounds.largest, volume);
     bounds.sum += volume;
     const double reach = m.radius * member_reach(m);
