@@ -163,7 +163,7 @@ print("result", free["verified"], free["overlap_count"], r["verified"], r["overl
 def test_a_group_of_hubs_too_large_for_memory_is_refused_before_its_fuse():
     """Groups of hubs built as one have no size limit (their Fuse reports progress and stops at a cancel), but one
     whose Fuse would not fit in memory is refused before it starts: a 16 x 16 x 16 block of overlapping balls (their
-    beams inside them) is one group of 4,096 hubs, a face each at 0.5 MB (2.15 GB), under an address space of 2 GB."""
+    beams inside them) is one group of 4,096 hubs, a face each at 1 MB (4.3 GB), under an address space of 2 GB."""
     code = ("report(lambda: sl.Lattice([((0, 0, 0), 0.55)], [(0, 1, 0, 0, 0, 0.1, 0.1)], (16, 16, 16), *T).brep())")
     message = run_limited(code, 2 * GIB)
     assert message.startswith("MemoryError: "), message
