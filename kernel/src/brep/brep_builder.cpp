@@ -666,10 +666,9 @@ void adopt_group(PieceBuild& b, const std::vector<std::size_t>& members, const H
 
 // Groups of hubs are built as one whatever their size: a Fuse grows about as n^1.6 with its n hubs (docs/brep.md:
 // minutes for hundreds of hubs), but it reports progress and stops at a cancel. What bounds them is memory, per
-// face of the members' closed cores (a ball patch, and a cone and a collar disk per stump): a BCC's 248 hubs
-// (3,164 faces) held 0.64 GB 2.6 min into their Fuse, its ~430 hubs of 6 x 6 x 6 cells (5,754 faces) 1.6 GB
-// 34 min into theirs (0.27 MB a face), and the process of the 248 hubs peaked at 2.0 GB (0.64 MB a face) over the
-// build and the lattice's exact properties. 1 MB a face keeps above that: ~1,300 such hubs in 16 GB.
+// face of the members' closed cores (a ball patch, and a cone and a collar disk per stump): building a BCC's 248
+// hubs in one group (3,164 faces) peaked at 0.87 GB, 0.28 MB a face; its ~430 hubs of 6 x 6 x 6 cells (5,754
+// faces) held 1.6 GB 34 min into their Fuse. 1 MB a face leaves room for worse Fuses: ~1,300 such hubs in 16 GB.
 constexpr std::uint64_t kFuseBytesPerFace = 1024 * 1024;
 
 // Refuses, before any Fuse, groups whose Fuses (run side by side) would not fit in memory: ResourceLimit naming them.
