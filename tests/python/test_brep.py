@@ -181,13 +181,20 @@ def test_balls_of_different_nodes_that_overlap_are_built_as_their_union():
     assert abs(props["volume"] / exact - 1) < 1e-7, (props["volume"], exact)
 
 
-def test_foreign_contacts_over_too_many_hubs_are_refused_naming_them():
-    """A 7 x 7 x 6 block of such balls is 294 hubs in one group, more than are built as one."""
+def test_foreign_contacts_over_256_hubs_are_built_as_one_group():
+    """A row of 300 such balls (their beams inside them) is one group of 300 hubs, more than the 256 a group was
+    limited to before its Fuse could be cancelled: one valid solid, the balls less 299 lenses."""
     t = sl.Similarity.translation
-    lat = sl.Lattice([((0, 0, 0), 0.55)], [(0, 1, 0, 0, 0) + RADII[0]], (7, 7, 6), t((1, 0, 0)), t((0, 1, 0)),
+    n = 300
+    lat = sl.Lattice([((0, 0, 0), 0.55)], [(0, 1, 0, 0, 0) + RADII[0]], (n, 1, 1), t((1, 0, 0)), t((0, 1, 0)),
                      t((0, 0, 1)))
-    with pytest.raises(ValueError, match=r"lattice: is not clean \(.*balls 0 and 1 meet.*294 hubs meet so"):
-        lat.brep()
+    stats = {}
+    props = sl.brep_properties(lat.brep(stats=stats))
+    assert props["valid"] and props["solids"] == 1
+    assert stats["foreign_hubs"] == n and stats["foreign_groups"] == 1, stats
+    R, d = 0.55, 1.0
+    exact = n * 4 / 3 * math.pi * R ** 3 - (n - 1) * math.pi * (4 * R + d) * (2 * R - d) ** 2 / 12
+    assert abs(props["volume"] / exact - 1) < 1e-7, (props["volume"], exact)
 
 
 def test_hull_model_lattice_is_one_valid_solid():

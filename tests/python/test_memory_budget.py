@@ -158,3 +158,15 @@ print("result", free["verified"], free["overlap_count"], r["verified"], r["overl
     _, free_verified, free_count, verified, count = line.split()
     assert free_verified == "True" and verified == "True", line
     assert int(count) == int(free_count) > 0, line
+
+
+def test_a_group_of_hubs_too_large_for_memory_is_refused_before_its_fuse():
+    """Groups of hubs built as one have no size limit (their Fuse reports progress and stops at a cancel), but one
+    whose Fuse would not fit in memory is refused before it starts: a 16 x 16 x 16 block of overlapping balls (their
+    beams inside them) is one group of 4,096 hubs, a face each at 1 MB (4.3 GB), under an address space of 2 GB."""
+    code = ("report(lambda: sl.Lattice([((0, 0, 0), 0.55)], [(0, 1, 0, 0, 0, 0.1, 0.1)], (16, 16, 16), *T).brep())")
+    message = run_limited(code, 2 * GIB)
+    assert message.startswith("MemoryError: "), message
+    assert re.search(r"OpenCASCADE's Fuse of 4096 hubs built as one \(1 group\)", message), message
+    estimate, budget, _ = figures(message)
+    assert estimate > budget

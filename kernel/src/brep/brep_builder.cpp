@@ -667,17 +667,33 @@ void adopt_group(PieceBuild& b, const std::vector<std::size_t>& members, const H
   }
 }
 
-// Groups of hubs are built as one up to this many hubs; beyond, the short beams or the contacts are reported.
-// Measured (BCC, node 0.45 of the neighbour distance, beams 0.9 of it): 126 hubs in 74 s, 248 in 215 s on a loaded
-// machine, the Fuse growing about as n^1.6; a Fuse is not interrupted by a cancel, so larger groups are refused.
-constexpr std::size_t kMaxGroupHubs = 256;
+// Groups of hubs are built as one whatever their size: a Fuse grows about as n^1.6 with its n hubs (docs/brep.md:
+// minutes for hundreds of hubs), but it reports progress and stops at a cancel. What bounds them is memory, per
+// face of the members' closed cores (a ball patch, and a cone and a collar disk per stump): building a BCC's 248
+// hubs in one group (3,164 faces) peaked at 0.87 GB, 0.28 MB a face; its ~430 hubs of 6 x 6 x 6 cells (5,754
+// faces) held 1.6 GB 34 min into their Fuse. 1 MB a face leaves room for worse Fuses: ~1,300 such hubs in 16 GB.
+constexpr std::uint64_t kFuseBytesPerFace = 1024 * 1024;
+
+// Refuses, before any Fuse, groups whose Fuses (run side by side) would not fit in memory: ResourceLimit naming them.
+void require_group_memory(const PieceBuild& b, const std::vector<std::vector<std::size_t>>& groups) {
+  std::uint64_t faces = 0, hubs = 0;
+  for (const std::vector<std::size_t>& g : groups)
+    for (std::size_t h : g) {
+      faces += 1 + 2 * b.hubs[h].stumps.size();  // the ball's patch; per stump its cone and collar disk
+      ++hubs;
+    }
+  require_memory(faces * kFuseBytesPerFace,
+                 "OpenCASCADE's Fuse of " + std::to_string(hubs) + " hubs built as one (" +
+                     std::to_string(groups.size()) + " group" + (groups.size() == 1 ? "" : "s") + ")",
+                 "thin the beams or nodes, space the nodes further apart, or build a part of the lattice (a filter)");
+}
 
 // Hubs joined by beams still too short for their collars (after tighten_short_beams) are built as one: the
 // connected groups of such beams' hubs, each by one Fuse of its members' closed cores (hub_group.hpp). The
 // group's faces go to its first hub; its other hubs keep none; the beams inside it are no longer built (their
 // two stumps overlap and cover them); the beams leaving it run from the group's collars as from a core's. A group
-// with a clean hub, more than kMaxGroupHubs hubs, or a Fuse that fails its checks is left as it was (its beams are
-// then reported by check_whole_beams_fit, with the reason).
+// with a clean hub, or a Fuse that fails its checks, is left as it was (its beams are then reported by
+// check_whole_beams_fit, with the reason). Groups too large for memory are refused (require_group_memory).
 void group_short_beams(PieceBuild& b) {
   const std::vector<std::int64_t> short_beams = short_whole_beams(b);
   if (short_beams.empty()) return;
@@ -703,14 +719,10 @@ void group_short_beams(PieceBuild& b) {
       b.group_failure = "a hub of a short beam has no core";
       continue;
     }
-    if (members.size() > kMaxGroupHubs) {
-      b.group_failure = std::to_string(members.size()) + " hubs are joined by such beams; up to " +
-                        std::to_string(kMaxGroupHubs) + " are built as one";
-      continue;
-    }
     std::sort(members.begin(), members.end());
     groups.push_back(std::move(members));
   }
+  require_group_memory(b, groups);
   std::vector<std::int64_t> group_of(n, -1);
   for (std::size_t g = 0; g < groups.size(); ++g)
     for (std::size_t h : groups[g]) group_of[h] = static_cast<std::int64_t>(g);
@@ -743,7 +755,8 @@ void group_short_beams(PieceBuild& b) {
       members.push_back(std::move(m));
     }
     try {
-      fused[g] = fuse_hub_group(members, g, "of crowded nodes joined by beams too short for their collars");
+      Progress fuse(b.progress, 0);  // no share of the bar (set before the groups were known), but reports and stops
+      fused[g] = fuse_hub_group(members, g, "of crowded nodes joined by beams too short for their collars", fuse);
       built[g] = 1;
     } catch (const InvalidInput& error) {
       failures[g] = error.what();
@@ -767,8 +780,8 @@ void group_short_beams(PieceBuild& b) {
 // components of the contacts and of the short beams at their hubs, each one Fuse of its members closed at
 // member_collar. The beams inside a group are no longer built; the beams leaving it start at its collars. Runs
 // after tight collars (tighten_short_beams) and before the groups of short beams, which then leave these hubs
-// alone. A group over kMaxGroupHubs hubs, or one whose Fuse fails its checks, is an error naming the contacts (the
-// lattice is not clean there).
+// alone. A group whose Fuse fails its checks is an error naming the contacts (the lattice is not clean there);
+// groups too large for memory are refused (require_group_memory).
 void group_foreign_contacts(PieceBuild& b) {
   const ForeignContacts* contacts = b.selection.foreign;
   if (contacts == nullptr || contacts->empty()) return;
@@ -801,12 +814,10 @@ void group_foreign_contacts(PieceBuild& b) {
   std::vector<std::vector<std::size_t>> groups;
   std::vector<std::int64_t> group_of(b.hubs.size(), -1);
   for (auto& [root, members] : by_root) {
-    if (members.size() > kMaxGroupHubs)
-      refuse(std::to_string(members.size()) + " hubs meet so; up to " + std::to_string(kMaxGroupHubs) +
-             " are built as one");
     for (std::size_t h : members) group_of[h] = static_cast<std::int64_t>(groups.size());
     groups.push_back(std::move(members));
   }
+  require_group_memory(b, groups);
   auto inner = [&](std::int64_t e) {
     const BeamWork& w = b.beams[e];
     return w.kind == BeamKind::Whole && group_of[w.end[0].hub] >= 0 && group_of[w.end[0].hub] == group_of[w.end[1].hub];
@@ -851,7 +862,8 @@ void group_foreign_contacts(PieceBuild& b) {
                                   std::to_string(hub.stumps[s].first) + " than the beam has room for");
         members.push_back(std::move(m));
       }
-      fused[g] = fuse_hub_group(members, g, "whose elements meet elements of other nodes");
+      Progress fuse(b.progress, 0);  // as in group_short_beams
+      fused[g] = fuse_hub_group(members, g, "whose elements meet elements of other nodes", fuse);
     } catch (const InvalidInput& error) {
       failures[g] = error.what();
     }

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "brep/hub_core.hpp"
+#include "steady/core/progress.hpp"
 #include "steady/core/vec.hpp"
 
 namespace steady {
@@ -44,7 +45,10 @@ gp_Trsf hub_placement(const Vec3& center, double radius, const Mat3& rotation);
 // bounds of a union (no less than the largest member, no more than their sum) and within 6 sigma of sampling the
 // members' own definition (ball, and each stump's cone up to its collar). Where a check fails, the Fuse is tried
 // again with small fuzzy values. Throws InvalidInput (field "hub") with the first failure when all fail, naming the
-// group as "the N hubs <why>".
-HubGroup fuse_hub_group(const std::vector<GroupMember>& members, std::uint64_t seed, const std::string& why);
+// group as "the N hubs <why>". Every Fuse (the retries too) reports to `progress` and stops at OpenCASCADE's next
+// UserBreak check once it is cancelled; the call then throws Cancelled (never a partial shape). A Fuse grows about
+// as n^1.6 with the group's n hubs (docs/brep.md): minutes for hundreds of hubs, so a cancel must reach it.
+HubGroup fuse_hub_group(const std::vector<GroupMember>& members, std::uint64_t seed, const std::string& why,
+                        Progress& progress);
 
 }  // namespace steady
