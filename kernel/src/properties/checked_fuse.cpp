@@ -3,6 +3,7 @@
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <TopTools_ListOfShape.hxx>
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace steady {
@@ -28,8 +29,13 @@ TopoDS_Shape fuse_once(const TopoDS_Shape& first, const std::vector<TopoDS_Shape
   return fuse.Shape();
 }
 
-TopoDS_Shape fuse_pieces(const std::vector<TopoDS_Shape>& pieces, double fuzzy, bool one_by_one) {
-  if (!one_by_one) return fuse_once(pieces.front(), {pieces.begin() + 1, pieces.end()}, fuzzy);
+// How the pieces are fused: all in one Fuse, or one by one (each added to the union of those before it) in their
+// order or the reverse one.
+enum class FuseOrder { AllAtOnce, OneByOne, OneByOneReversed };
+
+TopoDS_Shape fuse_pieces(std::vector<TopoDS_Shape> pieces, double fuzzy, FuseOrder order) {
+  if (order == FuseOrder::AllAtOnce) return fuse_once(pieces.front(), {pieces.begin() + 1, pieces.end()}, fuzzy);
+  if (order == FuseOrder::OneByOneReversed) std::reverse(pieces.begin(), pieces.end());
   TopoDS_Shape sum = pieces.front();
   for (std::size_t i = 1; i < pieces.size() && !sum.IsNull(); ++i) sum = fuse_once(sum, {pieces[i]}, fuzzy);
   return sum;
@@ -47,16 +53,16 @@ TopoDS_Shape checked_fuse(const std::vector<TopoDS_Shape>& pieces, double size, 
   }
   std::string first_refusal;
   for (double fuzzy : kFuzzyRetries)
-    for (bool one_by_one : {false, true}) {
-      if (one_by_one && pieces.size() == 2) continue;  // the same Fuse as all at once
-      const TopoDS_Shape result = fuse_pieces(pieces, fuzzy * size, one_by_one);
+    for (FuseOrder order : {FuseOrder::AllAtOnce, FuseOrder::OneByOne, FuseOrder::OneByOneReversed}) {
+      if (order != FuseOrder::AllAtOnce && pieces.size() == 2) continue;  // the same Fuse as all at once
+      const TopoDS_Shape result = fuse_pieces(pieces, fuzzy * size, order);
       const std::string refusal =
           result.IsNull() ? "OpenCASCADE's Fuse of " + what + " failed" : check(result);
       if (refusal.empty()) return result;
       if (first_refusal.empty()) first_refusal = refusal;
     }
-  throw std::runtime_error("hub union: " + first_refusal + " (and every retry: one by one, fuzzy values 1e-7 and "
-                           "1e-6, failed too)");
+  throw std::runtime_error("hub union: " + first_refusal + " (and every retry: one by one in either order, fuzzy "
+                           "values 1e-7 and 1e-6, failed too)");
 }
 
 }  // namespace steady
