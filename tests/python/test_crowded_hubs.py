@@ -109,8 +109,9 @@ def test_crowded_hubs_whose_stumps_meet_past_the_mid_plane_have_the_exact_volume
 
 def test_a_fuse_that_loses_volume_is_an_error_never_a_silent_figure():
     """FCC in the hull model, bent: node balls meet beams of other nodes, so the overlapping hubs must be fused.
-    OpenCASCADE's Fuse of one of them returns a valid solid 9 % short of the hub's exact volume; properties()
-    refuses, naming the hub, instead of reporting a volume that the Monte Carlo estimate contradicts."""
+    OpenCASCADE's Fuse of one of them returns a valid solid 9 % short of the hub's exact volume, at once and one by
+    one (only the reversed order fuses it whole): whatever the Fuse gives, properties() either refuses, naming the
+    hub, or reports a volume that the Monte Carlo estimate confirms."""
     lat = crowded_sweep.lattice("FCC", 0.45, None, "bend", (2, 2, 2))
     try:
         p = lat.properties()
