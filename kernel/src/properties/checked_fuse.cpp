@@ -44,7 +44,7 @@ TopoDS_Shape fuse_pieces(std::vector<TopoDS_Shape> pieces, double fuzzy, FuseOrd
 }  // namespace
 
 TopoDS_Shape checked_fuse(const std::vector<TopoDS_Shape>& pieces, double size, const FuseCheck& check,
-                          const std::string& what) {
+                          const std::string& what, bool fuzzy_retries) {
   if (pieces.empty()) throw std::invalid_argument("checked_fuse: no pieces to fuse");
   if (pieces.size() == 1) {
     const std::string refusal = check(pieces.front());
@@ -54,6 +54,7 @@ TopoDS_Shape checked_fuse(const std::vector<TopoDS_Shape>& pieces, double size, 
   std::string first_refusal;
   for (double fuzzy : kFuzzyRetries)
     for (FuseOrder order : {FuseOrder::AllAtOnce, FuseOrder::OneByOne, FuseOrder::OneByOneReversed}) {
+      if (fuzzy > 0.0 && !fuzzy_retries) break;
       if (order != FuseOrder::AllAtOnce && pieces.size() == 2) continue;  // the same Fuse as all at once
       const TopoDS_Shape result = fuse_pieces(pieces, fuzzy * size, order);
       const std::string refusal =
@@ -61,8 +62,8 @@ TopoDS_Shape checked_fuse(const std::vector<TopoDS_Shape>& pieces, double size, 
       if (refusal.empty()) return result;
       if (first_refusal.empty()) first_refusal = refusal;
     }
-  throw std::runtime_error("hub union: " + first_refusal + " (and every retry: one by one in either order, fuzzy "
-                           "values 1e-7 and 1e-6, failed too)");
+  throw std::runtime_error("hub union: " + first_refusal + " (and every retry: one by one in either order" +
+                           std::string(fuzzy_retries ? ", fuzzy values 1e-7 and 1e-6," : ",") + " failed too)");
 }
 
 }  // namespace steady

@@ -127,7 +127,8 @@ MassMoments solid_moments(const TopoDS_Shape& shape, const std::vector<CutPlane>
 
 // A hub fused alone and measured against its exact volume: OpenCASCADE's Fuse of a crowded hub's ball and frustums
 // can return a valid solid that silently lacks a piece (seen: 8 % of an FCC hub; 10 % of a BCC hub in the hull
-// model fused at once, which one by one fuses whole).
+// model fused at once, which one by one fuses whole). A hub's pieces are exact primitives, so only the exact
+// Fuses are tried.
 TopoDS_Shape measured_hub_solid(const Hub& h, const Vec3& origin, double exact_volume, double tolerance) {
   const std::string name = "the hub of " + to_string(h.node);
   return checked_fuse(hub_pieces(h, origin), hubs_extent({h}), [&](const TopoDS_Shape& solid) {
@@ -136,7 +137,7 @@ TopoDS_Shape measured_hub_solid(const Hub& h, const Vec3& origin, double exact_v
     return "OpenCASCADE's Fuse of " + name + " has volume " + std::to_string(volume) +
            " where the hub's exact volume is " + std::to_string(exact_volume) +
            "; its overlaps with other hubs cannot be measured";
-  }, name);
+  }, name, /*fuzzy_retries=*/false);
 }
 
 // Whether p lies in the hub: its ball, or a stump (the hull of the beam's end ball and the stump's cut disk).
