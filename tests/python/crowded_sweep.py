@@ -7,8 +7,9 @@ whose properties cannot be computed (then checked against sampling its membershi
 different hubs meet (the clean check's business, not a hub's), is refused because a beam is too short for the
 collars of its two crowded hubs (the message must name the beam), or fails.
 
-`python3 crowded_sweep.py [--long] [--trim | --mesh]` prints every case and the counts (--trim: each design trimmed
-into a box with a skin instead, checked against sampling; --mesh: each design as a mesh, run_mesh_case);
+`python3 crowded_sweep.py [--long] [--trim | --mesh | --properties]` prints every case and the counts (--trim: each
+design trimmed into a box with a skin instead, checked against sampling; --mesh: each design as a mesh,
+run_mesh_case; --properties: only the exact properties, run_properties_case, the census of those refused);
 test_crowded_hubs.py runs the short sweep, test_mesh.py the short mesh sweep.
 """
 import itertools
@@ -213,12 +214,28 @@ def run_mesh_case(preset, node_fraction, ratio, step):
     return ("built" if closed and inside else "failed"), detail, seconds
 
 
+def run_properties_case(preset, node_fraction, ratio, step):
+    """The same designs' properties alone (no B-rep): 'exact' (a sum over hubs), 'fused' (overlapping hubs fused
+    by OpenCASCADE) or 'refused' (the Fuse failed its checks: the B-rep sweep then falls back to sampling)."""
+    lat = lattice(preset, node_fraction, ratio, step, (2, 2, 2))
+    start = time.perf_counter()
+    try:
+        p = lat.properties()
+    except (ValueError, RuntimeError) as error:
+        return "refused", str(error)[:300], time.perf_counter() - start
+    seconds = time.perf_counter() - start
+    if p["union_clusters"]:
+        return "fused", "volume %.6f, %d hubs in %d clusters, error %.1e" % (
+            p["volume"], p["union_hubs"], p["union_clusters"], p["union_error"]), seconds
+    return "exact", "volume %.6f" % p["volume"], seconds
+
+
 def sweep(cases, out=sys.stdout, run=run_case):
     counts = {"built": 0, "sampled": 0, "foreign": 0, "too short": 0, "failed": 0}
     results = []
     for case in cases:
         outcome, detail, seconds = run(*case)
-        counts[outcome] += 1
+        counts[outcome] = counts.get(outcome, 0) + 1
         results.append((case, outcome, detail, seconds))
         print("%-8s node %.2f ratio %-5s %-13s %-9s %6.2f s  %s" % (
             case[0], case[1], "hull" if case[2] is None else case[2], case[3], outcome, seconds, detail),
@@ -229,4 +246,5 @@ def sweep(cases, out=sys.stdout, run=run_case):
 
 if __name__ == "__main__":
     sweep(long_cases() if "--long" in sys.argv else short_cases(),
-          run=run_trim_case if "--trim" in sys.argv else run_mesh_case if "--mesh" in sys.argv else run_case)
+          run=run_trim_case if "--trim" in sys.argv else run_mesh_case if "--mesh" in sys.argv else
+          run_properties_case if "--properties" in sys.argv else run_case)
