@@ -170,3 +170,16 @@ def test_a_group_of_hubs_too_large_for_memory_is_refused_before_its_fuse():
     assert re.search(r"OpenCASCADE's Fuse of 4096 hubs built as one \(1 group\)", message), message
     estimate, budget, _ = figures(message)
     assert estimate > budget
+
+
+def test_a_mesh_group_too_large_for_memory_is_refused_before_its_union():
+    """The mesh unites groups of any size too (pairwise exact unions, a cancel checked between two), but a group
+    whose exact union would not fit is refused before it starts: the same 4,096 overlapping balls as a mesh, about
+    4 KB per triangle of their templates, under an address space of 2 GB."""
+    code = ("report(lambda: sl.Lattice([((0, 0, 0), 0.55)], [(0, 1, 0, 0, 0, 0.1, 0.1)], (16, 16, 16), *T)"
+            ".to_mesh(0.005))")
+    message = run_limited(code, 2 * GIB)
+    assert message.startswith("MemoryError: "), message
+    assert re.search(r"the exact union of 4096 hubs joined in one group \(\d+ triangles", message), message
+    estimate, budget, _ = figures(message)
+    assert estimate > budget

@@ -14,6 +14,7 @@
 #include "mesh/vertex_key.hpp"
 #include "query/foreign_contacts.hpp"
 #include "steady/core/errors.hpp"
+#include "steady/core/memory_budget.hpp"
 
 namespace steady {
 
@@ -108,6 +109,28 @@ TriangleMesh unite(std::vector<Member> members, std::size_t group_index, Progres
                            "mesh: the union of a group cut into a loop where a beam leaves it");
 }
 
+// Groups of any size are united (the pairwise unions check for a cancel between two); what bounds them is the
+// memory of the exact corefinement, which holds every member's triangles with exact points: refused before any
+// union (ResourceLimit) when the largest group would not fit, naming what joined its hubs.
+void require_union_memory(const MeshPlan& plan, const MeshGroups& out, const ForeignContacts& contacts,
+                          std::int64_t shorts) {
+  std::uint64_t largest = 0;
+  std::size_t hubs = 0;
+  for (const MeshGroup& g : out.groups) {
+    std::uint64_t triangles = 0;
+    for (std::size_t h : g.hubs) triangles += plan.templates[plan.hubs[h].templ].triangles.size();
+    if (triangles > largest) largest = triangles, hubs = g.hubs.size();
+  }
+  require_memory(largest * kUnionBytesPerTriangle,
+                 "mesh: the exact union of " + std::to_string(hubs) + " hubs joined in one group (" +
+                     std::to_string(largest) + " triangles of their templates) by " +
+                     (contacts.empty() ? std::string()
+                                       : std::to_string(contacts.issue_count) + " contacts of elements with foreign "
+                                         "ones (" + contacts.description + ")" + (shorts ? " and " : "")) +
+                     (shorts ? std::to_string(shorts) + " beams too short for their hubs' collars" : ""),
+                 "thin the beams or nodes, space the nodes further apart, or use a larger tolerance");
+}
+
 }  // namespace
 
 MeshGroups mesh_groups(const MeshPlan& plan, const ForeignContacts& contacts, const std::vector<char>& short_beam,
@@ -135,17 +158,7 @@ MeshGroups mesh_groups(const MeshPlan& plan, const ForeignContacts& contacts, co
     out.of_hub[h] = it->second;
     out.groups[it->second].hubs.push_back(h);
   }
-  const auto shorts = std::count(short_beam.begin(), short_beam.end(), 1);
-  for (const MeshGroup& g : out.groups)
-    if (g.hubs.size() > kMaxMeshGroupHubs)
-      fail_input("hub", std::to_string(g.hubs.size()) + " hubs are joined in one group, more than the mesh unites (" +
-                            std::to_string(kMaxMeshGroupHubs) + "), by " +
-                            (contacts.empty() ? std::string()
-                                              : std::to_string(contacts.issue_count) + " contacts of elements with "
-                                                "foreign ones (" + contacts.description + ")" +
-                                                    (shorts ? " and " : "")) +
-                            (shorts ? std::to_string(shorts) + " beams too short for their hubs' collars" : "") +
-                            ": thin the beams or nodes, or space the nodes further apart");
+  require_union_memory(plan, out, contacts, std::count(short_beam.begin(), short_beam.end(), 1));
   for (std::int64_t e = 0; e < f.beam_count(); ++e) {
     if (!plan.frustums[e].exists) continue;
     const int ga = out.of_hub[plan.ends[2 * e].hub], gb = out.of_hub[plan.ends[2 * e + 1].hub];

@@ -36,13 +36,14 @@ struct MeshGroups {
 };
 
 // The groups of a plan whose templates exist (every hub of a group needs its own): the hubs joined by `contacts`
-// (its pairs of balls, with those of the short beams added), `short_beam` per beam. InvalidInput (field "hub")
-// when a group is larger than kMaxMeshGroupHubs; std::runtime_error when CGAL cannot unite a group or the union
+// (its pairs of balls, with those of the short beams added), `short_beam` per beam. ResourceLimit when the
+// largest group's exact union would not fit in memory; std::runtime_error when CGAL cannot unite a group or the union
 // cuts a leaving loop.
 MeshGroups mesh_groups(const MeshPlan& plan, const ForeignContacts& contacts, const std::vector<char>& short_beam,
                        Progress& progress);
 
-// Larger groups take minutes in the exact Boolean (and the B-rep refuses past 256 hubs too).
-constexpr std::size_t kMaxMeshGroupHubs = 256;
+// Memory of the exact corefinement per triangle of a group's members (exact points, half-edges, the union's
+// copy; measured below in docs/mesh.md), the bound on a group's size.
+constexpr std::uint64_t kUnionBytesPerTriangle = 4096;
 
 }  // namespace steady

@@ -93,6 +93,8 @@ std::vector<char> fit_beams_and_unite(MeshPlan& plan, const std::vector<char>& b
     Progress part(progress, 30);
     try {
       plan.groups = mesh_groups(plan, contacts, short_beam, part);
+    } catch (const ResourceLimit&) {
+      throw;  // too large for memory: says so itself
     } catch (const std::runtime_error& e) {
       // Two tessellations of one cone overlap along a short beam, and the union's slivers can fold once rounded.
       if (!stats.short_beams) throw;
