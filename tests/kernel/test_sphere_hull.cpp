@@ -1,10 +1,15 @@
 // The incremental hull of points on the unit sphere (mesh/sphere_hull.hpp) against CGAL's hull of all the points at
-// once: the same triangles, in the same order, whatever order the points come in, also where many points are
-// cocircular (a hub's rings, the symmetric points of regular solids).
+// once (convex_hull_3, put in the same canonical form): the same triangles, in the same order, whatever order the
+// points come in, also where many points are cocircular (a hub's rings, the symmetric points of regular solids).
 #include <gtest/gtest.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/convex_hull_3.h>
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <random>
 #include <stdexcept>
 
@@ -36,15 +41,40 @@ std::vector<Vec3> rings(std::mt19937_64& rng, int count, int n) {
   return points;
 }
 
+// CGAL's hull of the points, as triangles of their indices.
+std::vector<Triangle> cgal_hull(const std::vector<Vec3>& points) {
+  using Point = CGAL::Exact_predicates_inexact_constructions_kernel::Point_3;
+  std::vector<Point> cgal;
+  std::map<std::array<double, 3>, std::uint32_t> index;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    cgal.emplace_back(points[i].x, points[i].y, points[i].z);
+    index[{points[i].x, points[i].y, points[i].z}] = static_cast<std::uint32_t>(i);
+  }
+  CGAL::Surface_mesh<Point> hull;
+  CGAL::convex_hull_3(cgal.begin(), cgal.end(), hull);
+  std::vector<Triangle> triangles;
+  for (const auto f : hull.faces()) {
+    Triangle t;
+    int k = 0;
+    for (const auto v : CGAL::vertices_around_face(hull.halfedge(f), hull)) {
+      const Point& p = hull.point(v);
+      t[k++] = index.at({p.x(), p.y(), p.z()});
+    }
+    triangles.push_back(t);
+  }
+  return canonical_hull_triangles(triangles, points);
+}
+
 // The first `start` points at once, the rest added one by one (each with a random "near" vertex that may be far
 // away), against the hull of all of them at once.
 void expect_same_as_at_once(const std::vector<Vec3>& points, std::size_t start, std::mt19937_64& rng) {
   SphereHull hull(std::vector<Vec3>(points.begin(), points.begin() + start));
   std::uniform_int_distribution<std::uint32_t> any(0, static_cast<std::uint32_t>(start - 1));
   for (std::size_t i = start; i < points.size(); ++i) hull.add(points[i], {any(rng)});
-  const std::vector<Triangle> incremental = hull.triangles(), at_once = sphere_triangulation(points);
-  EXPECT_EQ(incremental, at_once);
-  EXPECT_EQ(at_once.size(), 2 * points.size() - 4);  // a triangulated sphere (Euler)
+  const std::vector<Triangle> added = hull.triangles(), at_once = sphere_triangulation(points), cgal = cgal_hull(points);
+  EXPECT_EQ(added, cgal);
+  EXPECT_EQ(at_once, cgal);
+  EXPECT_EQ(cgal.size(), 2 * points.size() - 4);  // every point a vertex of a triangulated sphere (Euler)
 }
 
 TEST(SphereHull, PointsAddedOneByOneGiveTheHullOfAllAtOnce) {

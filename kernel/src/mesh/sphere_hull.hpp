@@ -19,13 +19,14 @@ namespace steady {
 
 class SphereHull {
  public:
-  // The hull of `points` (unit vectors; each must be a vertex of the hull: an error otherwise).
+  // The hull of `points` (unit vectors spread around the sphere's center, as a hub's are; each must be a vertex of
+  // the hull: an error otherwise), built point by point as well.
   explicit SphereHull(const std::vector<Vec3>& points);
 
   // Adds a point (unit vector; its index is the number of points before it): the triangles it sees are replaced
-  // by the fan from it to their boundary. `near` are vertices close to the point (a triangle of theirs is likely
-  // to see it); any triangle that sees it will do. Throws when the point sees no triangle or hides a vertex
-  // (points closer than rounding).
+  // by the fan from it to their boundary. The search for them walks from the first of `near`, vertices close to
+  // the point. Throws when the point sees no triangle or hides a vertex
+  // (points closer than rounding); the hull is not to be used after that.
   void add(const Vec3& point, const std::vector<std::uint32_t>& near);
 
   // The outward triangles, canonical (see above) and sorted, each starting from its smallest index.
@@ -33,8 +34,9 @@ class SphereHull {
 
  private:
   bool sees(std::uint32_t triangle, std::uint32_t point) const;
-  std::uint32_t seeing_triangle(std::uint32_t point, const std::vector<std::uint32_t>& near) const;
+  std::uint32_t seeing_triangle(std::uint32_t point, std::uint32_t near) const;
   std::uint32_t new_triangle(const Triangle& corners);
+  void insert(std::uint32_t point, std::uint32_t near);
 
   std::vector<Vec3> points_;
   std::vector<Triangle> corners_;                    // per triangle slot, outward
@@ -42,9 +44,15 @@ class SphereHull {
   std::vector<char> alive_;
   std::vector<std::uint32_t> free_;
   std::vector<std::uint32_t> triangle_at_;  // per vertex: a live triangle it is a corner of
+  std::vector<std::uint32_t> mark_;         // per triangle slot: seen or not by the point being inserted
+  std::uint32_t stamp_ = 0;                 // the marks of the last insertion
 };
 
-// The triangles of the convex hull of unit vectors at once (SphereHull(points).triangles()).
+// The canonical form of another triangulation of the hull of `points` (outward triangles of their indices): what
+// SphereHull::triangles() answers for the same points. The tests compare CGAL's hull with this one so.
+std::vector<Triangle> canonical_hull_triangles(std::vector<Triangle> triangles, const std::vector<Vec3>& points);
+
+// The triangles of the convex hull of unit vectors (SphereHull(points).triangles()).
 std::vector<Triangle> sphere_triangulation(const std::vector<Vec3>& directions);
 
 }  // namespace steady
