@@ -71,7 +71,8 @@ void expect_same_as_at_once(const std::vector<Vec3>& points, std::size_t start, 
   SphereHull hull(std::vector<Vec3>(points.begin(), points.begin() + start));
   std::uniform_int_distribution<std::uint32_t> any(0, static_cast<std::uint32_t>(start - 1));
   for (std::size_t i = start; i < points.size(); ++i) hull.add(points[i], {any(rng)});
-  const std::vector<Triangle> added = hull.triangles(), at_once = sphere_triangulation(points), cgal = cgal_hull(points);
+  const std::vector<Triangle> added = hull.triangles(), at_once = sphere_triangulation(points);
+  const std::vector<Triangle> cgal = cgal_hull(points);
   EXPECT_EQ(added, cgal);
   EXPECT_EQ(at_once, cgal);
   EXPECT_EQ(cgal.size(), 2 * points.size() - 4);  // every point a vertex of a triangulated sphere (Euler)

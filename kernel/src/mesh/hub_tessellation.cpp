@@ -10,6 +10,7 @@
 #include <string>
 #include <tuple>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "core/cell_grid.hpp"
 #include "lattice/circle_frames.hpp"
@@ -227,13 +228,23 @@ std::vector<Triangle> refined_triangulation(std::vector<Vec3>& directions, std::
                                             const Outside& outside, const InHole& in_hole, double tolerance) {
   std::vector<Vec3> position;
   SphereHull hull(directions);
+  // Triangles found within the tolerance in an earlier round: the same corners give the same samples, so a
+  // triangle that stays from round to round is measured once.
+  struct TriangleHash {
+    std::size_t operator()(const Triangle& t) const {
+      return (static_cast<std::size_t>(t[0]) * 0x9E3779B97F4A7C15ULL ^ t[1]) * 0x9E3779B97F4A7C15ULL ^ t[2];
+    }
+  };
+  std::unordered_set<Triangle, TriangleHash> within;
   for (int round = 0;; ++round) {
     for (std::size_t i = position.size(); i < directions.size(); ++i)
       position.push_back(ring_of[i] >= 0 ? ring_points[i] : radius(directions[i]) * directions[i]);
     std::vector<Triangle> triangles = without_ring_caps(hull.triangles(), ring_of, rings);
     if (round == kRefinementRounds) return triangles;
-    std::map<std::array<double, 3>, std::pair<Vec3, Triangle>> added;  // new direction -> it, and the triangle it refines
+    // new direction -> it, and the triangle it refines
+    std::map<std::array<double, 3>, std::pair<Vec3, Triangle>> added;
     for (const Triangle& t : triangles) {
+      if (within.count(t)) continue;
       const Vec3 &q0 = position[t[0]], &q1 = position[t[1]], &q2 = position[t[2]];
       const Vec3 normal = glm::cross(q1 - q0, q2 - q0);
       const double area2 = glm::length(normal);
@@ -251,6 +262,7 @@ std::vector<Triangle> refined_triangulation(std::vector<Vec3>& directions, std::
         if (error > worst) worst = error, at = w;
       }
       if (worst > tolerance) added.emplace(std::array<double, 3>{at.x, at.y, at.z}, std::make_pair(at, t));
+      else within.insert(t);
     }
     if (added.empty()) return triangles;
     for (const auto& [key, refined] : added) {

@@ -122,7 +122,8 @@ SphereHull::SphereHull(const std::vector<Vec3>& points) : points_(points), trian
     for (int k = 0; k < 3; ++k)
       for (std::uint32_t u = 0; u < 4; ++u)
         for (int j = 0; j < 3; ++j)
-          if (corners_[u][j] == corners_[t][(k + 1) % 3] && corners_[u][(j + 1) % 3] == corners_[t][k]) across_[t][k] = u;
+          if (corners_[u][j] == corners_[t][(k + 1) % 3] && corners_[u][(j + 1) % 3] == corners_[t][k])
+            across_[t][k] = u;
   alive_.assign(4, 1);
   for (std::uint32_t t = 0; t < 4; ++t)
     for (std::uint32_t v : corners_[t]) triangle_at_[v] = t;
@@ -158,7 +159,8 @@ std::uint32_t SphereHull::seeing_triangle(std::uint32_t point, std::uint32_t nea
     const Triangle& c = corners_[t];
     int beyond = -1;
     for (int k = 0; k < 3 && beyond < 0; ++k)
-      if (CGAL::orientation(center, cgal_point(points_[c[k]]), cgal_point(points_[c[(k + 1) % 3]]), p) == CGAL::NEGATIVE)
+      if (CGAL::orientation(center, cgal_point(points_[c[k]]), cgal_point(points_[c[(k + 1) % 3]]), p) ==
+          CGAL::NEGATIVE)
         beyond = k;
     if (beyond < 0) break;
     t = across_[t][beyond];
@@ -259,7 +261,9 @@ namespace {
 
 // The canonical triangles (planar facets again as fans, each triangle from its smallest index, sorted): the same
 // points give the same triangles in the same order however the hull was built.
-std::vector<Triangle> canonical(std::vector<Triangle> triangles, const std::vector<std::array<std::uint32_t, 3>>& across,
+using Adjacency = std::vector<std::array<std::uint32_t, 3>>;  // per triangle, the triangles across its edges
+
+std::vector<Triangle> canonical(std::vector<Triangle> triangles, const Adjacency& across,
                                 const std::vector<Vec3>& points) {
   canonical_facets(triangles, across, points);
   for (Triangle& t : triangles) std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
