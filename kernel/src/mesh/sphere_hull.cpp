@@ -91,6 +91,7 @@ std::uint64_t z_order(const Vec3& p) {
 
 SphereHull::SphereHull(const std::vector<Vec3>& points) : points_(points), triangle_at_(points.size(), 0) {
   const std::uint32_t n = static_cast<std::uint32_t>(points.size());
+  if (n < 4) internal_error("a hub's sphere needs four points at least");
   // First the points farthest along +-x, +-y, +-z: their hull holds the sphere's center, so from then on a point's
   // direction leads the walk to the triangles it sees. A tetrahedron of four of them not in one plane, outward.
   std::vector<std::uint32_t> first;
