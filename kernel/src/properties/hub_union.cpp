@@ -1,6 +1,7 @@
 #include "steady/properties/hub_union.hpp"
 
 #include <BRepAdaptor_Surface.hxx>
+#include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepGProp.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
@@ -8,6 +9,7 @@
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <GProp_GProps.hxx>
 #include <TopExp_Explorer.hxx>
+#include <TopTools_ListOfShape.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Face.hxx>
 #include <gp_Pln.hxx>
@@ -24,7 +26,6 @@
 #include "steady/core/errors.hpp"
 #include "lattice/hub_collars.hpp"
 #include "properties/box_sampling.hpp"
-#include "properties/checked_fuse.hpp"
 #include "properties/hub_solid.hpp"
 
 namespace steady {
@@ -57,25 +58,19 @@ std::vector<TopoDS_Shape> hub_pieces(const Hub& hub, const Vec3& origin) {
   return pieces;
 }
 
-// The diagonal of a box around the hubs (translated by -origin; their balls and cut disks): the scale of the
-// Fuse's fuzzy values.
-double hubs_extent(const std::vector<Hub>& hubs) {
-  Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
-  for (const Hub& h : hubs) {
-    lo = glm::min(lo, h.ball.center - Vec3(h.ball.radius));
-    hi = glm::max(hi, h.ball.center + Vec3(h.ball.radius));
-    for (const Stump& s : h.stumps) {
-      lo = glm::min(lo, s.cut.center - Vec3(s.cut.radius));
-      hi = glm::max(hi, s.cut.center + Vec3(s.cut.radius));
-    }
-  }
-  return glm::length(hi - lo);
-}
-
-double shape_volume(const TopoDS_Shape& shape, double tolerance) {
-  GProp_GProps g;
-  BRepGProp::VolumeProperties(shape, g, tolerance, Standard_True);
-  return g.Mass();
+TopoDS_Shape fuse_all(const std::vector<TopoDS_Shape>& pieces, const std::string& what) {
+  if (pieces.size() == 1) return pieces.front();
+  TopTools_ListOfShape args, tools;
+  args.Append(pieces.front());
+  for (std::size_t i = 1; i < pieces.size(); ++i) tools.Append(pieces[i]);
+  BRepAlgoAPI_Fuse fuse;
+  fuse.SetArguments(args);
+  fuse.SetTools(tools);
+  fuse.SetRunParallel(Standard_False);  // clusters already run in parallel
+  fuse.Build();
+  if (!fuse.IsDone() || fuse.HasErrors())
+    throw std::runtime_error("hub union: OpenCASCADE's Fuse failed on " + what);
+  return fuse.Shape();
 }
 
 struct CutPlane {
@@ -123,21 +118,6 @@ MassMoments solid_moments(const TopoDS_Shape& shape, const std::vector<CutPlane>
     m.area += surface.Mass();
   }
   return m;
-}
-
-// A hub fused alone and measured against its exact volume: OpenCASCADE's Fuse of a crowded hub's ball and frustums
-// can return a valid solid that silently lacks a piece (seen: 8 % of an FCC hub; 10 % of a BCC hub in the hull
-// model fused at once, which one by one fuses whole). A hub's pieces are exact primitives, so only the exact
-// Fuses are tried.
-TopoDS_Shape measured_hub_solid(const Hub& h, const Vec3& origin, double exact_volume, double tolerance) {
-  const std::string name = "the hub of " + to_string(h.node);
-  return checked_fuse(hub_pieces(h, origin), hubs_extent({h}), [&](const TopoDS_Shape& solid) {
-    const double volume = shape_volume(solid, tolerance);
-    if (std::abs(volume - exact_volume) <= 1e-6 * exact_volume) return std::string();
-    return "OpenCASCADE's Fuse of " + name + " has volume " + std::to_string(volume) +
-           " where the hub's exact volume is " + std::to_string(exact_volume) +
-           "; its overlaps with other hubs cannot be measured";
-  }, name, /*fuzzy_retries=*/false);
 }
 
 // Whether p lies in the hub: its ball, or a stump (the hull of the beam's end ball and the stump's cut disk).
@@ -295,8 +275,7 @@ bool moved_cut_correction(const Lattice& lattice, const std::vector<NodeId>& ove
 }  // namespace
 
 TopoDS_Shape hub_solid(const Hub& hub, const Vec3& origin) {
-  return checked_fuse(hub_pieces(hub, origin), hubs_extent({hub}), [](const TopoDS_Shape&) { return std::string(); },
-                      "a hub");
+  return fuse_all(hub_pieces(hub, origin), "a hub");
 }
 
 HubUnionCorrection hub_union_correction(const Lattice& lattice, const std::vector<HubOverlap>& overlaps,
@@ -348,25 +327,34 @@ HubUnionCorrection hub_union_correction(const Lattice& lattice, const std::vecto
       shift.translation = h.ball.center - reference;
       hub_sum += transformed(p.moments, shift);
       largest = std::max(largest, p.moments.volume);
-      hub_solids.push_back(measured_hub_solid(h, reference, p.moments.volume, tolerance));
+      // Each hub fused alone first and measured against its exact volume: OpenCASCADE's Fuse of a crowded hub's
+      // ball and frustums can return a valid solid that silently lacks a piece (seen: 8 % of an FCC hub).
+      const std::string hub_name = "the hub of " + to_string(h.node);
+      TopoDS_Shape solid = fuse_all(hub_pieces(h, reference), hub_name);
+      GProp_GProps g;
+      BRepGProp::VolumeProperties(solid, g, tolerance, Standard_True);
+      if (!(std::abs(g.Mass() - p.moments.volume) <= 1e-6 * p.moments.volume))
+        throw std::runtime_error("hub union: OpenCASCADE's Fuse of " + hub_name + " has volume " +
+                                 std::to_string(g.Mass()) + " where the hub's exact volume is " +
+                                 std::to_string(p.moments.volume) + "; its overlaps with other hubs cannot be measured");
+      hub_solids.push_back(std::move(solid));
       for (const Stump& s : h.stumps) cuts.push_back({s.cut.center - reference, s.cut.normal, s.cut.radius});
       members.push_back(h);
     }
     const std::string what = "the cluster of hubs around " + to_string(nodes[clusters[c].front()]);
+    const TopoDS_Shape united = fuse_all(hub_solids, what);
+    if (!BRepCheck_Analyzer(united).IsValid())
+      throw std::runtime_error("hub union: OpenCASCADE's Fuse gave an invalid solid for " + what);
+    const MassMoments u = solid_moments(united, cuts, tolerance, errors[c]);
+    const double slack = 1e-7 * hub_sum.volume;
+    if (!(u.volume <= hub_sum.volume + slack && u.volume >= largest - slack))
+      throw std::runtime_error("hub union: OpenCASCADE's Fuse of " + what + " has volume " + std::to_string(u.volume) +
+                               ", outside [" + std::to_string(largest) + ", " + std::to_string(hub_sum.volume) + "]");
     const auto [estimate, sigma] = monte_carlo_union_volume(members, c);
-    MassMoments u;
-    checked_fuse(hub_solids, hubs_extent(members), [&](const TopoDS_Shape& united) {
-      if (!BRepCheck_Analyzer(united).IsValid()) return "OpenCASCADE's Fuse gave an invalid solid for " + what;
-      u = solid_moments(united, cuts, tolerance, errors[c]);
-      const double slack = 1e-7 * hub_sum.volume;
-      if (!(u.volume <= hub_sum.volume + slack && u.volume >= largest - slack))
-        return "OpenCASCADE's Fuse of " + what + " has volume " + std::to_string(u.volume) + ", outside [" +
-               std::to_string(largest) + ", " + std::to_string(hub_sum.volume) + "]";
-      if (!(std::abs(u.volume - estimate) <= 6.0 * sigma + 1e-9 * hub_sum.volume))
-        return "OpenCASCADE's Fuse of " + what + " has volume " + std::to_string(u.volume) +
-               " where sampling the hubs gives " + std::to_string(estimate) + " +- " + std::to_string(sigma);
-      return std::string();
-    }, what);
+    if (!(std::abs(u.volume - estimate) <= 6.0 * sigma + 1e-9 * hub_sum.volume))
+      throw std::runtime_error("hub union: OpenCASCADE's Fuse of " + what + " has volume " + std::to_string(u.volume) +
+                               " where sampling the hubs gives " + std::to_string(estimate) + " +- " +
+                               std::to_string(sigma));
     corrections[c] = u - hub_sum;
     volumes[c] = u.volume;
     progress.advance();
