@@ -70,7 +70,7 @@ std::vector<Triangle> cgal_hull(const std::vector<Vec3>& points) {
 void expect_same_as_at_once(const std::vector<Vec3>& points, std::size_t start, std::mt19937_64& rng) {
   SphereHull hull(std::vector<Vec3>(points.begin(), points.begin() + start));
   std::uniform_int_distribution<std::uint32_t> any(0, static_cast<std::uint32_t>(start - 1));
-  for (std::size_t i = start; i < points.size(); ++i) hull.add(points[i], {any(rng)});
+  for (std::size_t i = start; i < points.size(); ++i) hull.add(points[i], any(rng));
   const std::vector<Triangle> added = hull.triangles(), at_once = sphere_triangulation(points);
   const std::vector<Triangle> cgal = cgal_hull(points);
   EXPECT_EQ(added, cgal);
@@ -117,9 +117,9 @@ TEST(SphereHull, APointThatIsNotAVertexIsAnError) {
   std::mt19937_64 rng(5);
   const std::vector<Vec3> points = random_directions(rng, 50);
   SphereHull inside(points);
-  EXPECT_THROW(inside.add(0.5 * points[0] + 0.5 * points[1], {0}), std::runtime_error);  // inside the hull
+  EXPECT_THROW(inside.add(0.5 * points[0] + 0.5 * points[1], 0), std::runtime_error);  // inside the hull
   SphereHull again(points);
-  EXPECT_THROW(again.add(points[7], {7}), std::runtime_error);  // already a vertex
+  EXPECT_THROW(again.add(points[7], 7), std::runtime_error);  // already a vertex
 }
 
 }  // namespace

@@ -241,8 +241,8 @@ std::vector<Triangle> refined_triangulation(std::vector<Vec3>& directions, std::
       position.push_back(ring_of[i] >= 0 ? ring_points[i] : radius(directions[i]) * directions[i]);
     std::vector<Triangle> triangles = without_ring_caps(hull.triangles(), ring_of, rings);
     if (round == kRefinementRounds) return triangles;
-    // new direction -> it, and the triangle it refines
-    std::map<std::array<double, 3>, std::pair<Vec3, Triangle>> added;
+    // new direction -> it, and a corner of the triangle it refines (where the hull's search starts)
+    std::map<std::array<double, 3>, std::pair<Vec3, std::uint32_t>> added;
     for (const Triangle& t : triangles) {
       if (within.count(t)) continue;
       const Vec3 &q0 = position[t[0]], &q1 = position[t[1]], &q2 = position[t[2]];
@@ -261,13 +261,13 @@ std::vector<Triangle> refined_triangulation(std::vector<Vec3>& directions, std::
         const double error = std::max(std::abs(glm::dot(radius(w) * w - q0, normal)) / area2, outside(point));
         if (error > worst) worst = error, at = w;
       }
-      if (worst > tolerance) added.emplace(std::array<double, 3>{at.x, at.y, at.z}, std::make_pair(at, t));
+      if (worst > tolerance) added.emplace(std::array<double, 3>{at.x, at.y, at.z}, std::make_pair(at, t[0]));
       else within.insert(t);
     }
     if (added.empty()) return triangles;
     for (const auto& [key, refined] : added) {
-      const auto& [w, t] = refined;
-      hull.add(w, {t[0], t[1], t[2]});
+      const auto& [w, corner] = refined;
+      hull.add(w, corner);
       directions.push_back(w);
       ring_of.push_back(-1);
     }

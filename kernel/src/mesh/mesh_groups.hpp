@@ -43,7 +43,8 @@ MeshGroups mesh_groups(const MeshPlan& plan, const ForeignContacts& contacts, co
                        Progress& progress);
 
 // Memory of the exact corefinement per triangle of a group's members (exact points, half-edges, the union's
-// copy; measured below in docs/mesh.md), the bound on a group's size.
+// copy), the bound on a group's size. Measured: a row of 300 overlapping balls (88,144 triangles at 0.01) added
+// 40 MB to the process at its peak, about 0.5 KB a triangle; 4 KB leaves room for unions that cut more.
 constexpr std::uint64_t kUnionBytesPerTriangle = 4096;
 
 }  // namespace steady

@@ -187,11 +187,11 @@ std::uint32_t SphereHull::new_triangle(const Triangle& corners) {
   return t;
 }
 
-void SphereHull::add(const Vec3& point, const std::vector<std::uint32_t>& near) {
+void SphereHull::add(const Vec3& point, std::uint32_t near) {
   const auto p = static_cast<std::uint32_t>(points_.size());
   points_.push_back(point);
   triangle_at_.push_back(0);
-  insert(p, near.empty() ? 0 : near.front());
+  insert(p, near);
 }
 
 void SphereHull::insert(std::uint32_t p, std::uint32_t near) {

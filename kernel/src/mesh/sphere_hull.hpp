@@ -24,10 +24,10 @@ class SphereHull {
   explicit SphereHull(const std::vector<Vec3>& points);
 
   // Adds a point (unit vector; its index is the number of points before it): the triangles it sees are replaced
-  // by the fan from it to their boundary. The search for them walks from the first of `near`, vertices close to
-  // the point. Throws when the point sees no triangle or hides a vertex
-  // (points closer than rounding); the hull is not to be used after that.
-  void add(const Vec3& point, const std::vector<std::uint32_t>& near);
+  // by the fan from it to their boundary. The search for them walks from `near`, a vertex close to the point.
+  // Throws when the point sees no triangle or hides a vertex (points closer than rounding); the hull is not to be
+  // used after that.
+  void add(const Vec3& point, std::uint32_t near);
 
   // The outward triangles, canonical (see above) and sorted, each starting from its smallest index.
   std::vector<Triangle> triangles() const;
