@@ -237,10 +237,13 @@ TrimResult trim_lattice(const FlatLattice& f, const TopoDS_Shape& body_shape, co
       progress.check();
       trim::report(options, "trim: attempt " + std::to_string(k + 1) + " of " + std::to_string(attempts.size()) +
                                 " failed: " + e.what());
-      failures += (failures.empty() ? "" : "; then ") + std::string(e.what());
+      // A failure said once: the attempts often fail alike (the same cluster, the same checks).
+      if (failures.find(e.what()) == std::string::npos)
+        failures += (failures.empty() ? "" : "; then ") + std::string(e.what());
     }
   }
-  throw std::runtime_error(failures +
+  throw std::runtime_error(failures + " (" + std::to_string(attempts.size()) + " attempts: as asked" +
+                           (options.move_cuts ? ", every cut halfway" : "") + ", the spheres laid out the other way)" +
                            ". OpenCASCADE's Booleans fail where the body's surface grazes the lattice (runs along a "
                            "beam, or nearly touches a ball): moving or resizing the body slightly helps");
 }

@@ -44,12 +44,12 @@ std::vector<Vec3> sphere_points(double spacing) {
 }
 
 // The n vertices of the circle of radius `radius` around unit `direction` at axial `position`, counterclockwise
-// about the direction, starting on the direction's reference perpendicular (circle_frames.hpp).
-std::vector<Vec3> circle_points(const Vec3& direction, double position, double radius, int n) {
+// about the direction, starting `phase` steps past the direction's reference perpendicular (circle_frames.hpp).
+std::vector<Vec3> circle_points(const Vec3& direction, double position, double radius, int n, double phase = 0.0) {
   const Vec3 e1 = any_perpendicular(direction), e2 = glm::cross(direction, e1);
   std::vector<Vec3> points(n);
   for (int i = 0; i < n; ++i) {
-    const double t = 2.0 * M_PI * i / n;
+    const double t = 2.0 * M_PI * (i + phase) / n;
     points[i] = position * direction + radius * (std::cos(t) * e1 + std::sin(t) * e2);
   }
   return points;
@@ -335,6 +335,13 @@ HubTemplate tessellate_clean_hub(const std::vector<SphereCap>& caps, double tole
   return out;
 }
 
+// Collar rings start an eighth of a step past their reference perpendicular. Reference perpendiculars come from
+// the coordinate axes, so on a ring starting there points lie in the planes through the beam's axis and a
+// coordinate axis: in symmetric lattices, mirror planes, where the crease points and rings of neighbouring hubs
+// lie too. Where a short beam's hubs are united (mesh_groups.cpp), such points met within a float's resolution
+// and the union folded once rounded (the FCC with beams as thick as its nodes).
+constexpr double kCollarRingPhase = 0.125;
+
 HubTemplate tessellate_crowded_hub(const std::vector<CoreStump>& stumps, const std::vector<double>& collars,
                                    double tolerance) {
   const RadialHub hub(stumps, collars);
@@ -356,7 +363,7 @@ HubTemplate tessellate_crowded_hub(const std::vector<CoreStump>& stumps, const s
     const int n = std::max(circle_segments(rc, tolerance),
                            static_cast<int>(std::ceil(2.0 * M_PI * std::sin(collar_angle[k]) / spacing)));
     std::vector<std::uint32_t> loop;
-    for (const Vec3& p : circle_points(axes[k], collars[k], rc, n)) {
+    for (const Vec3& p : circle_points(axes[k], collars[k], rc, n, kCollarRingPhase)) {
       loop.push_back(static_cast<std::uint32_t>(directions.size()));
       directions.push_back(glm::normalize(p));
       ring_points.push_back(p);

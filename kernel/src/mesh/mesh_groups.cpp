@@ -3,10 +3,12 @@
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <string>
 
 #include "core/disjoint_sets.hpp"
+#include "lattice/circle_frames.hpp"
 #include "mesh/cgal_mesh.hpp"
 #include "mesh/float_safe.hpp"
 #include "mesh/loop_fan.hpp"
@@ -31,7 +33,55 @@ struct Member {
   Vec3 cap(const std::vector<std::uint32_t>& index, bool reversed) { return append_fan(mesh, index, reversed); }
 };
 
-Member hub_member(const MeshPlan& plan, const MeshGroups& groups, const std::vector<char>& short_beam, std::size_t h) {
+// A short beam's two stumps both tessellate its cone between the collars, and the union keeps the outer of the two.
+// Rings whose points meet (the facing stumps of symmetric hubs) put the two tessellations on each other there: the
+// exact union is then full of slivers that cross once rounded to floats. Hub b's ring (`loop`, placed in
+// `vertices`) is turned about the beam's axis, by the turn of a fine grid within one of its steps that keeps its
+// points farthest from hub a's (half a step when both have as many points), so that their facets cross at an angle.
+// Its points stay on their circle; the union drops the ring with its cap. A union that still folds is tried again
+// (mesh_groups) with the ring as placed (`attempt` 1), then a quarter of a step past the farthest turn (2).
+void stagger_ring(const MeshPlan& plan, std::int64_t e, const std::vector<std::uint32_t>& loop,
+                  std::vector<Vec3>& vertices, int attempt) {
+  if (loop.size() < 3 || attempt == 1) return;
+  const MeshBeamEnd& a = plan.ends[2 * e];
+  const BeamCone& cone = plan.frustums[e].cone;
+  const Vec3 u = any_perpendicular(cone.axis), v = glm::cross(cone.axis, u);
+  auto angle = [&](const Vec3& p) { return std::atan2(glm::dot(p - cone.a, v), glm::dot(p - cone.a, u)); };
+  std::vector<double> at_a, at_b;
+  for (std::uint32_t i : plan.templates[plan.hubs[a.hub].templ].loops[a.slot])
+    at_a.push_back(angle(placed_vertex(plan, a.hub, i)));
+  for (std::uint32_t i : loop) at_b.push_back(angle(vertices[i]));
+  std::sort(at_a.begin(), at_a.end());
+  at_a.push_back(at_a.front() + 2.0 * M_PI);
+  // The smallest angle between a point of b's ring turned by `turn` and a point of a's.
+  auto clearance = [&](double turn) {
+    double least = M_PI;
+    for (double t : at_b) {
+      const double w = wrap_into(t + turn, at_a.front());
+      const auto next = std::upper_bound(at_a.begin(), at_a.end(), w);
+      least = std::min({least, *next - w, w - *(next - 1)});
+    }
+    return least;
+  };
+  constexpr int kTurns = 32;
+  const double step = 2.0 * M_PI / static_cast<double>(loop.size());
+  double best_turn = 0.0, best = clearance(0.0);
+  for (int k = 1; k < kTurns; ++k) {
+    const double turn = (k < kTurns / 2 ? k : k - kTurns) * step / kTurns;  // small turns first, both ways
+    const double c = clearance(turn);
+    if (c > best * (1.0 + 1e-9)) best = c, best_turn = turn;
+  }
+  if (attempt == 2) best_turn += 0.25 * step;
+  const double c = std::cos(best_turn), s = std::sin(best_turn);
+  for (std::uint32_t i : loop) {
+    const Vec3 d = vertices[i] - cone.a;
+    const double x = glm::dot(d, u), y = glm::dot(d, v);
+    vertices[i] = cone.a + glm::dot(d, cone.axis) * cone.axis + (c * x - s * y) * u + (s * x + c * y) * v;
+  }
+}
+
+Member hub_member(const MeshPlan& plan, const MeshGroups& groups, const std::vector<char>& short_beam, std::size_t h,
+                  int attempt) {
   Member m;
   const HubTemplate& t = plan.templates[plan.hubs[h].templ];
   for (std::size_t v = 0; v < t.vertices.size(); ++v) m.mesh.vertices.push_back(placed_vertex(plan, h, static_cast<std::uint32_t>(v)));
@@ -47,6 +97,7 @@ Member hub_member(const MeshPlan& plan, const MeshGroups& groups, const std::vec
     if (end == 1 || short_beam[e]) {
       // The beam's owner closes it on this loop with the same fan, facing the other way; a short beam's other hub
       // covers this cap with its stump.
+      if (short_beam[e] && end == 1) stagger_ring(plan, e, loop, m.mesh.vertices, attempt);
       m.cap(loop, false);
       continue;
     }
@@ -131,6 +182,46 @@ void require_union_memory(const MeshPlan& plan, const MeshGroups& out, const For
                  "thin the beams or nodes, space the nodes further apart, or use a larger tolerance");
 }
 
+// Group g's mesh (members with their short beams' rings turned as `attempt` says, united, rounded to floats,
+// checked open exactly at its leaving loops) and its leaving loops' vertices, into `out`; std::runtime_error,
+// leaving `out` as it was, when the union fails or folds.
+void unite_group(const MeshPlan& plan, MeshGroups& out, const std::vector<char>& short_beam, std::size_t g, int attempt,
+                 Progress& progress) {
+  const MeshGroup& group = out.groups[g];
+  std::vector<Member> members;
+  for (std::size_t h : group.hubs) members.push_back(hub_member(plan, out, short_beam, h, attempt));
+  TriangleMesh mesh = unite(std::move(members), g, progress);
+  make_float_safe(mesh, "a group of united hubs");
+  std::unordered_map<VertexKey, std::uint32_t, VertexKeyHash> index;
+  for (std::uint32_t i = 0; i < mesh.vertices.size(); ++i) index.emplace(vertex_key(mesh.vertices[i]), i);
+  std::unordered_map<std::uint64_t, std::uint32_t> loop_vertex;
+  std::int64_t loop_edges = 0;
+  for (std::size_t h : group.hubs) {
+    const HubTemplate& t = plan.templates[plan.hubs[h].templ];
+    for (std::size_t s = 0; s < plan.hubs[h].stumps.size(); ++s) {
+      if (out.inner[plan.hubs[h].stumps[s].first]) continue;
+      loop_edges += static_cast<std::int64_t>(t.loops[s].size());
+      for (std::uint32_t v : t.loops[s]) {
+        const auto it = index.find(vertex_key(float_rounded(placed_vertex(plan, h, v))));
+        if (it == index.end())
+          throw std::runtime_error("mesh: the union of group " + std::to_string(g) +
+                                   " lost a vertex of the loop where beam " +
+                                   std::to_string(plan.hubs[h].stumps[s].first) + " leaves it");
+        loop_vertex.emplace(static_cast<std::uint64_t>(h) << 32 | v, it->second);
+      }
+    }
+  }
+  // Open exactly at the leaving loops: a cap the union cut into would leave more border, or a non-manifold edge.
+  const MeshEdgeReport edges = mesh_edge_report(mesh);
+  if (edges.border_edges != loop_edges || edges.non_manifold_edges || edges.misoriented_edges)
+    throw std::runtime_error("mesh: the union of group " + std::to_string(g) + " has " +
+                             std::to_string(edges.border_edges) + " open edges where its leaving loops have " +
+                             std::to_string(loop_edges) + ", " + std::to_string(edges.non_manifold_edges) +
+                             " non-manifold and " + std::to_string(edges.misoriented_edges) + " misoriented");
+  out.groups[g].mesh = std::move(mesh);
+  out.loop_vertex.insert(loop_vertex.begin(), loop_vertex.end());
+}
+
 }  // namespace
 
 MeshGroups mesh_groups(const MeshPlan& plan, const ForeignContacts& contacts, const std::vector<char>& short_beam,
@@ -165,36 +256,22 @@ MeshGroups mesh_groups(const MeshPlan& plan, const ForeignContacts& contacts, co
     out.inner[e] = ga >= 0 && ga == gb;
   }
   for (std::size_t g = 0; g < out.groups.size(); ++g) {
-    MeshGroup& group = out.groups[g];
-    std::vector<Member> members;
-    for (std::size_t h : group.hubs) members.push_back(hub_member(plan, out, short_beam, h));
-    group.mesh = unite(std::move(members), g, progress);
-    make_float_safe(group.mesh, "a group of united hubs");
-    std::unordered_map<VertexKey, std::uint32_t, VertexKeyHash> index;
-    for (std::uint32_t i = 0; i < group.mesh.vertices.size(); ++i) index.emplace(vertex_key(group.mesh.vertices[i]), i);
-    std::int64_t loop_edges = 0;
-    for (std::size_t h : group.hubs) {
-      const HubTemplate& t = plan.templates[plan.hubs[h].templ];
-      for (std::size_t s = 0; s < plan.hubs[h].stumps.size(); ++s) {
-        if (out.inner[plan.hubs[h].stumps[s].first]) continue;
-        loop_edges += static_cast<std::int64_t>(t.loops[s].size());
-        for (std::uint32_t v : t.loops[s]) {
-          const auto it = index.find(vertex_key(float_rounded(placed_vertex(plan, h, v))));
-          if (it == index.end())
-            throw std::runtime_error("mesh: the union of group " + std::to_string(g) +
-                                     " lost a vertex of the loop where beam " +
-                                     std::to_string(plan.hubs[h].stumps[s].first) + " leaves it");
-          out.loop_vertex.emplace(static_cast<std::uint64_t>(h) << 32 | v, it->second);
-        }
+    bool has_short = false;
+    for (std::size_t h : out.groups[g].hubs)
+      for (const auto& stump : plan.hubs[h].stumps) has_short = has_short || short_beam[stump.first];
+    // Rings of short beams turned three ways (stagger_ring) before a group is given up.
+    for (int attempt = 0;; ++attempt) {
+      try {
+        unite_group(plan, out, short_beam, g, attempt, progress);
+        break;
+      } catch (const ResourceLimit&) {
+        throw;
+      } catch (const Cancelled&) {
+        throw;
+      } catch (const std::runtime_error&) {
+        if (!has_short || attempt == 2) throw;
       }
     }
-    // Open exactly at the leaving loops: a cap the union cut into would leave more border, or a non-manifold edge.
-    const MeshEdgeReport edges = mesh_edge_report(group.mesh);
-    if (edges.border_edges != loop_edges || edges.non_manifold_edges || edges.misoriented_edges)
-      throw std::runtime_error("mesh: the union of group " + std::to_string(g) + " has " +
-                               std::to_string(edges.border_edges) + " open edges where its leaving loops have " +
-                               std::to_string(loop_edges) + ", " + std::to_string(edges.non_manifold_edges) +
-                               " non-manifold and " + std::to_string(edges.misoriented_edges) + " misoriented");
   }
   return out;
 }

@@ -50,13 +50,11 @@ void check_tolerance(const FlatLattice& f, double tolerance) {
 // free part of the other stump, else refused. Then the groups: hubs joined by `contacts` or by short beams. Returns
 // per beam whether its strip (or its group) is placed.
 std::vector<char> fit_beams_and_unite(MeshPlan& plan, const std::vector<char>& built, ForeignContacts contacts,
-                                      GroupPolicy policy, Progress& progress) {
-  const bool unite_short = policy == GroupPolicy::All;
+                                      Progress& progress) {
   const FlatLattice& f = *plan.lattice;
   const std::vector<BeamFrustum>& frustums = plan.frustums;
   LatticeMeshStats& stats = plan.stats;
   std::vector<char> placed(f.beam_count(), 0), short_beam(f.beam_count(), 0);
-  std::string first_short;
   for (std::int64_t e = 0; e < f.beam_count(); ++e) {
     if ((e & 4095) == 0) progress.check();
     const MeshBeamEnd& a = plan.ends[2 * e];
@@ -75,16 +73,15 @@ std::vector<char> fit_beams_and_unite(MeshPlan& plan, const std::vector<char>& b
     const BeamCone& cone = frustums[e].cone;
     const double inside_a = 0.5 * (cone.ra * cone.sin_phi + frustums[e].exit_a);
     const double inside_b = 0.5 * (-cone.rb * cone.sin_phi + frustums[e].exit_b);
-    if (!unite_short || !(length - at_a > inside_b && length - at_b > inside_a))
+    if (!(length - at_a > inside_b && length - at_b > inside_a))
       fail_input("hub", "beam " + std::to_string(e) + " (balls " + std::to_string(f.beams[e].a) + " and " +
                             std::to_string(f.beams[e].b) + ") is too short for the collars of its crowded hubs (" +
                             g(at_a) + " + " + g(at_b) + " of its length " + g(length) +
-                            (unite_short ? ", reaching past each other into the balls" : "") +
-                            "): thinner beams or smaller balls there");
+                            ", reaching past each other into the balls): thinner beams or smaller balls there");
     short_beam[e] = 1;
     contacts.joined.emplace_back(f.beams[e].a, f.beams[e].b);
     if (!stats.short_beams++)
-      first_short = "beam " + std::to_string(e) + " (balls " + std::to_string(f.beams[e].a) + " and " +
+      plan.first_short_beam = "beam " + std::to_string(e) + " (balls " + std::to_string(f.beams[e].a) + " and " +
                     std::to_string(f.beams[e].b) + ": " + g(at_a) + " + " + g(at_b) + " of its length " +
                     g(length) + ")";
   }
@@ -98,9 +95,7 @@ std::vector<char> fit_beams_and_unite(MeshPlan& plan, const std::vector<char>& b
     } catch (const std::runtime_error& e) {
       // Two tessellations of one cone overlap along a short beam, and the union's slivers can fold once rounded.
       if (!stats.short_beams) throw;
-      fail_input("hub", std::to_string(stats.short_beams) + " beams are too short for the collars of their crowded "
-                            "hubs (the first: " + first_short + "), and the mesh could not unite their hubs (" +
-                            e.what() + "): thinner beams or smaller balls there (the B-rep, brep(), builds them)");
+      fail_short_beams(plan, std::string("the mesh could not unite their hubs (") + e.what() + ")");
     }
     stats.foreign_groups = static_cast<std::int64_t>(plan.groups.groups.size());
     for (const MeshGroup& group : plan.groups.groups) stats.foreign_hubs += static_cast<std::int64_t>(group.hubs.size());
@@ -110,6 +105,12 @@ std::vector<char> fit_beams_and_unite(MeshPlan& plan, const std::vector<char>& b
 }
 
 }  // namespace
+
+void fail_short_beams(const MeshPlan& plan, const std::string& why) {
+  fail_input("hub", std::to_string(plan.stats.short_beams) + " beams are too short for the collars of their crowded "
+                        "hubs (the first: " + plan.first_short_beam + "), and " + why +
+                        ": thinner beams or smaller balls there (the B-rep, brep(), builds them)");
+}
 
 // The strip between loop a (counterclockwise about the beam's axis) and loop b (given counterclockwise about the
 // opposite direction, as hub b sees its stump): the two polygons merged by angle about the axis, so every
@@ -153,7 +154,7 @@ void strip_triangles(const std::vector<Vec3>& va, const std::vector<std::uint32_
 }
 
 MeshPlan plan_lattice_mesh(const FlatLattice& f, const MeshOptions& options, Progress& progress,
-                           const HubsNeeded& needed, GroupPolicy groups) {
+                           const HubsNeeded& needed) {
   MeshPlan plan;
   plan.lattice = &f;
   LatticeMeshStats& stats = plan.stats;
@@ -238,7 +239,7 @@ MeshPlan plan_lattice_mesh(const FlatLattice& f, const MeshOptions& options, Pro
   }
   stats.template_seconds = seconds_since(t0);
 
-  const std::vector<char> placed = fit_beams_and_unite(plan, built, contacts, groups, progress);
+  const std::vector<char> placed = fit_beams_and_unite(plan, built, contacts, progress);
 
   // Sizes and offsets (a grouped hub has its place in its group's mesh).
   for (std::size_t k = 0; k < plan.hubs.size(); ++k) {

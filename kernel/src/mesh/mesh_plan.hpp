@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "lattice/hub_catalog.hpp"
@@ -41,6 +42,7 @@ struct MeshPlan {
   std::vector<std::uint64_t> beam_first_triangle;  // beam_count + 1 entries; strips follow all hubs and groups
   std::uint64_t vertex_count = 0, triangle_count = 0;
   LatticeMeshStats stats;
+  std::string first_short_beam;  // the first beam too short for its hubs' collars, for messages ("" when none)
 };
 
 // At most how many points the template of a hub with `stumps` beams has at relative tolerance `tau`, counting a
@@ -57,15 +59,14 @@ using HubsNeeded = std::function<std::vector<char>(const MeshPlan&)>;
 // Checks the options and the lattice (InvalidInput naming "tolerance", "lattice" or "hub"), builds the templates:
 // all of them, or with `needed` only those of the hubs it names (the others stay empty, and the strips of beams
 // at such hubs are not counted). The hubs of elements meeting foreign ones, and of beams too short for their
-// collars, are united in groups (mesh_groups.hpp) as `groups` allows, else refused (InvalidInput "lattice" naming
-// the contacts, or "hub" naming the beam).
-enum class GroupPolicy {
-  All,              // a whole lattice
-  ForeignContacts,  // a trimmed one: the band's Boolean, cutting the slivers of a short beam's two tessellations,
-                    // folds once rounded, so short beams are refused there
-};
+// collars, are united in groups (mesh_groups.hpp); a group that cannot be united is refused (InvalidInput "hub"
+// naming the first short beam when there are short beams).
 MeshPlan plan_lattice_mesh(const FlatLattice& lattice, const MeshOptions& options, Progress& progress,
-                           const HubsNeeded& needed = {}, GroupPolicy groups = GroupPolicy::All);
+                           const HubsNeeded& needed = {});
+
+// The refusal of a lattice whose short beams' united hubs gave no mesh (`why`: the union's or the Boolean's
+// error): InvalidInput "hub", naming how many beams are short and the first, and what helps.
+[[noreturn]] void fail_short_beams(const MeshPlan& plan, const std::string& why);
 
 // Index in the whole mesh of vertex v of hub h's template (a loop's vertex when the hub is in a group).
 std::uint64_t mesh_vertex(const MeshPlan& plan, std::size_t h, std::uint32_t v);

@@ -18,6 +18,7 @@
 #include "mesh/mesh_plan.hpp"
 #include "mesh/vertex_key.hpp"
 #include "steady/core/errors.hpp"
+#include "steady/core/progress.hpp"
 
 namespace steady {
 
@@ -259,8 +260,7 @@ TriangleMesh trimmed_lattice_mesh(const FlatLattice& f, const MeshOptions& optio
         [&](const MeshPlan& p) {
           hubs = surface.hubs(p);
           return hubs_needed(p, hubs);
-        },
-        GroupPolicy::ForeignContacts);
+        });
   }
   stats.plan_seconds = seconds_since(clock);
   clock = std::chrono::steady_clock::now();
@@ -276,12 +276,20 @@ TriangleMesh trimmed_lattice_mesh(const FlatLattice& f, const MeshOptions& optio
   stats.moved_clear = keep_clear(surface, inside, band);
   stats.pieces_seconds = seconds_since(clock);
   clock = std::chrono::steady_clock::now();
-  TriangleMesh band_done = band_boolean(band.mesh, band.cap_centers, request);
-  stats.boolean_seconds = seconds_since(clock);
-  clock = std::chrono::steady_clock::now();
-  // Every writer stores floats: the band is rounded and repaired here, the rest (edges far above a float's
-  // resolution) only rounded; the join still matches bit for bit, both sides rounded alike.
-  stats.float_removed_triangles = make_float_safe(band_done, "the trimmed band");
+  TriangleMesh band_done;
+  try {
+    band_done = band_boolean(band.mesh, band.cap_centers, request);
+    stats.boolean_seconds = seconds_since(clock);
+    clock = std::chrono::steady_clock::now();
+    // Every writer stores floats: the band is rounded and repaired here, the rest (edges far above a float's
+    // resolution) only rounded; the join still matches bit for bit, both sides rounded alike.
+    stats.float_removed_triangles = make_float_safe(band_done, "the trimmed band");
+  } catch (const std::runtime_error& e) {
+    // Where the body cuts a group of short beams' hubs, the cut can meet what is left of the slivers between the
+    // two tessellations of a short beam's cone: said as the short beams' refusal, which names what helps.
+    if (!plan.stats.short_beams || dynamic_cast<const ResourceLimit*>(&e) || dynamic_cast<const Cancelled*>(&e)) throw;
+    fail_short_beams(plan, std::string("the body's cut through their united hubs failed (") + e.what() + ")");
+  }
   round_to_floats(inside.mesh);
   stats.float_seconds = seconds_since(clock);
   progress.advance(40);
