@@ -7,9 +7,10 @@ whose properties cannot be computed (then checked against sampling its membershi
 different hubs meet (the clean check's business, not a hub's), is refused because a beam is too short for the
 collars of its two crowded hubs (the message must name the beam), or fails.
 
-`python3 crowded_sweep.py [--long] [--trim | --mesh | --properties]` prints every case and the counts (--trim: each
-design trimmed into a box with a skin instead, checked against sampling; --mesh: each design as a mesh,
-run_mesh_case; --properties: only the exact properties, run_properties_case, the census of those refused);
+`python3 crowded_sweep.py [--long] [--trim | --mesh | --trim --mesh | --properties]` prints every case and the counts
+(--trim: each design trimmed into a box with a skin instead, checked against sampling; --mesh: each design as a mesh,
+run_mesh_case; both: each design as a trimmed mesh, run_trim_mesh_case; --properties: only the exact properties,
+run_properties_case, the census of those refused);
 test_crowded_hubs.py runs the short sweep, test_mesh.py the short mesh sweep.
 """
 import itertools
@@ -214,6 +215,33 @@ def run_mesh_case(preset, node_fraction, ratio, step):
     return ("built" if closed and inside else "failed"), detail, seconds
 
 
+def run_trim_mesh_case(preset, node_fraction, ratio, step):
+    """The designs as trimmed meshes (3 x 3 x 3 cells in TRIM_BOX with a skin of TRIM_SKIN, tolerance 0.02 of the
+    node radius): 'built' (closed and oriented, volume within 5 sigma of sampling and the chord bound), 'too short'
+    (refused naming a beam too short for its hubs' collars) or 'failed'."""
+    from test_mesh import box_mesh, edge_report, volume_and_area
+    lat = lattice(preset, node_fraction, ratio, step, (3, 3, 3))
+    corner, edge = TRIM_BOX
+    tolerance = 0.02 * node_fraction * sl.preset(preset)["neighbour_distance"]
+    start = time.perf_counter()
+    stats = {}
+    try:
+        vertices, triangles = lat.to_mesh(tolerance, body=box_mesh(corner, corner + edge),
+                                          inner=box_mesh(corner + TRIM_SKIN, corner + edge - TRIM_SKIN), stats=stats)
+    except (ValueError, RuntimeError) as error:
+        message = str(error)
+        named = isinstance(error, ValueError) and "too short for the collars" in message and "beam " in message
+        return "too short" if named else "failed", message[:300], time.perf_counter() - start
+    seconds = time.perf_counter() - start
+    volume, area = volume_and_area(vertices, triangles)
+    estimate, sigma = sampled_trimmed_volume(lat, TRIM_SKIN)
+    detail = "%d triangles, %d short beams, volume %.5f, sampled %.5f +- %.5f, bound %.5f" % (
+        len(triangles), stats["short_beams"], volume, estimate, sigma, tolerance * area)
+    closed = edge_report(triangles) == (0, 0, 0)
+    inside = estimate - 5 * sigma - tolerance * area <= volume <= estimate + 5 * sigma
+    return ("built" if closed and inside else "failed"), detail, seconds
+
+
 def run_properties_case(preset, node_fraction, ratio, step):
     """The same designs' properties alone (no B-rep): 'exact' (a sum over hubs), 'fused' (overlapping hubs fused
     by OpenCASCADE) or 'refused' (the Fuse failed its checks: the B-rep sweep then falls back to sampling)."""
@@ -245,6 +273,7 @@ def sweep(cases, out=sys.stdout, run=run_case):
 
 
 if __name__ == "__main__":
+    trim, mesh = "--trim" in sys.argv, "--mesh" in sys.argv
     sweep(long_cases() if "--long" in sys.argv else short_cases(),
-          run=run_trim_case if "--trim" in sys.argv else run_mesh_case if "--mesh" in sys.argv else
+          run=run_trim_mesh_case if trim and mesh else run_trim_case if trim else run_mesh_case if mesh else
           run_properties_case if "--properties" in sys.argv else run_case)

@@ -82,8 +82,8 @@ std::vector<char> fit_beams_and_unite(MeshPlan& plan, const std::vector<char>& b
     contacts.joined.emplace_back(f.beams[e].a, f.beams[e].b);
     if (!stats.short_beams++)
       plan.first_short_beam = "beam " + std::to_string(e) + " (balls " + std::to_string(f.beams[e].a) + " and " +
-                    std::to_string(f.beams[e].b) + ": " + g(at_a) + " + " + g(at_b) + " of its length " +
-                    g(length) + ")";
+                              std::to_string(f.beams[e].b) + ": " + g(at_a) + " + " + g(at_b) + " of its length " +
+                              g(length) + ")";
   }
   {
     const auto t1 = std::chrono::steady_clock::now();
