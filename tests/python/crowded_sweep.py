@@ -180,6 +180,14 @@ def run_trim_case(preset, node_fraction, ratio, step):
     return "built", detail, seconds
 
 
+def mesh_refusal(error, start):
+    """(outcome, detail, seconds) of a mesh that was refused: 'too short' when the refusal names a beam too short
+    for its hubs' collars, else 'failed'."""
+    message = str(error)
+    named = isinstance(error, ValueError) and "too short for the collars" in message and "beam " in message
+    return "too short" if named else "failed", message[:300], time.perf_counter() - start
+
+
 def run_mesh_case(preset, node_fraction, ratio, step):
     """The same designs (2 x 2 x 2 cells) as a mesh at a tolerance of 0.02 node radii: 'built' (closed and
     oriented, no vertex farther than the tolerance outside the solid, the properties' volume within the chord
@@ -193,9 +201,7 @@ def run_mesh_case(preset, node_fraction, ratio, step):
     try:
         vertices, triangles = lat.to_mesh(tolerance, stats=stats)
     except (ValueError, RuntimeError) as error:
-        message = str(error)
-        named = isinstance(error, ValueError) and "too short for the collars" in message and "beam " in message
-        return "too short" if named else "failed", message[:300], time.perf_counter() - start
+        return mesh_refusal(error, start)
     seconds = time.perf_counter() - start
     volume, area = volume_and_area(vertices, triangles)
     outside = float(lat.distance(vertices).max())
@@ -229,9 +235,7 @@ def run_trim_mesh_case(preset, node_fraction, ratio, step):
         vertices, triangles = lat.to_mesh(tolerance, body=box_mesh(corner, corner + edge),
                                           inner=box_mesh(corner + TRIM_SKIN, corner + edge - TRIM_SKIN), stats=stats)
     except (ValueError, RuntimeError) as error:
-        message = str(error)
-        named = isinstance(error, ValueError) and "too short for the collars" in message and "beam " in message
-        return "too short" if named else "failed", message[:300], time.perf_counter() - start
+        return mesh_refusal(error, start)
     seconds = time.perf_counter() - start
     volume, area = volume_and_area(vertices, triangles)
     estimate, sigma = sampled_trimmed_volume(lat, TRIM_SKIN)
