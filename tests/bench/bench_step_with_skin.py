@@ -1,0 +1,63 @@
+"""Issue 14's large STEP: a swirled lattice (bench_brep's scale lattice: one node of radius 0.25, three beams of
+unequal end radii, U a slight swirl) trimmed into a cylinder 3 degrees off its beams with a skin of 0.4, written
+as a STEP assembly and read back by OpenCASCADE's reader (in a reader process). Prints the beams, the write time,
+the file's size per beam, the peak memory, the read time, and each part's validity, solids and volume.
+Default: 12 x 12 x 8 nodes, 3,120 beams (19 s to write, 10.0 KB per beam, 24 s to read); --long: 101,343 beams (issue 14's 100,000-beam target; hours on a loaded machine).
+Usage: bench_step_with_skin.py [--long]"""
+import os
+import resource
+import sys
+import tempfile
+import time
+
+import steadylattice as sl
+
+sys.path.append("/usr/lib/freecad/lib")
+import FreeCAD  # noqa: E402
+import Part  # noqa: E402
+
+
+def lattice(counts):
+    S = sl.Similarity
+    nodes = [((0, 0, 0), 0.25)]
+    beams = [(0, 1, 0, 0, 0, 0.10, 0.12), (0, 0, 1, 0, 0, 0.11, 0.09), (0, 0, 0, 1, 0, 0.08, 0.10)]
+    return sl.Lattice(nodes, beams, counts, S.swirl(0.004, (0, 0, 1), (0, -250, 0), 1.0005), S.translation((0, 1, 0)),
+                      S.translation((0, 0, 1)))
+
+
+def cylinder_body(lat, tilt=0.05):
+    """BREP text of a cylinder across the lattice, its axis `tilt` off the beams (as bench_brep's)."""
+    centers, _ = lat.balls()
+    lo, hi = centers.min(0), centers.max(0)
+    mid = 0.5 * (lo + hi)
+    radius, height = 0.5 * min(hi[0] - lo[0], hi[1] - lo[1]), 0.9 * (hi[2] - lo[2])
+    return Part.makeCylinder(radius, height, FreeCAD.Vector(mid[0], mid[1], mid[2] - height / 2),
+                             FreeCAD.Vector(tilt, 0.6 * tilt, 1)).exportBrepToString()
+
+
+def main():
+    counts = (33, 33, 32) if "--long" in sys.argv else (12, 12, 8)
+    lat = lattice(counts)
+    body = cylinder_body(lat)
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "lattice_part.step")
+        start = time.perf_counter()
+        stats = {}
+        lat.write_step(path, body=body, skin=0.4, stats=stats)
+        write = time.perf_counter() - start
+        size = os.path.getsize(path)
+        peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+        print("beams %d, written in %.1f s, %.1f MB (%.1f KB per beam), peak %.0f MB, %d crossing hubs" % (
+            lat.beam_count, write, size / 1e6, size / 1e3 / lat.beam_count, peak, stats["crossing_hubs"]), flush=True)
+        start = time.perf_counter()
+        parts = sl.read_step(path)
+        print("read back by OpenCASCADE in %.1f s" % (time.perf_counter() - start))
+        for p in parts:
+            print("  %-8s valid %s, %d solids, %d faces, volume %.6f" % (
+                p["name"], p["valid"], p["solids"], p["faces"], p["volume"]))
+        if not all(p["valid"] and p["solids"] == 1 for p in parts):
+            sys.exit(1)
+
+
+if __name__ == "__main__":
+    main()
