@@ -143,6 +143,22 @@ def test_a_trimmed_mesh_unites_the_hubs_of_short_beams():
     assert estimate - 5 * sigma - tolerance * area <= volume <= estimate + 5 * sigma, (volume, estimate, sigma)
 
 
+def test_a_cancel_while_short_beams_hubs_are_united_is_a_cancel():
+    # The FCC with beams as thick as its nodes: progress stays at 0.39 while its group of 26 hubs is united (about
+    # 5 s). A cancel there came out as the short beams' refusal (a ValueError ending "(cancelled)").
+    from crowded_sweep import lattice
+    lat = lattice("FCC", 0.35, 1.0, "translation", (2, 2, 2))
+    fractions = []
+
+    def progress(fraction):
+        fractions.append(fraction)
+        return fraction < 0.39
+
+    with pytest.raises(sl.Cancelled):
+        lat.to_mesh(0.02 * 0.35 * sl.preset("FCC")["neighbour_distance"], progress=progress)
+    assert fractions[-1] == pytest.approx(0.39, abs=0.005)
+
+
 def test_a_beam_too_short_whose_hubs_cannot_be_united_names_it():
     # The tapered cubic cell with beams as thick as its nodes, trimmed with a skin: the body's cut through its
     # united hubs fails, and the refusal names the first short beam and what helps.

@@ -264,12 +264,8 @@ MeshGroups mesh_groups(const MeshPlan& plan, const ForeignContacts& contacts, co
       try {
         unite_group(plan, out, short_beam, g, attempt, progress);
         break;
-      } catch (const ResourceLimit&) {
-        throw;
-      } catch (const Cancelled&) {
-        throw;
-      } catch (const std::runtime_error&) {
-        if (!has_short || attempt == 2) throw;
+      } catch (const std::runtime_error& e) {
+        if (!has_short || attempt == 2 || !is_geometry_failure(e)) throw;
       }
     }
   }

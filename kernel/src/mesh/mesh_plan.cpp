@@ -90,11 +90,9 @@ std::vector<char> fit_beams_and_unite(MeshPlan& plan, const std::vector<char>& b
     Progress part(progress, 30);
     try {
       plan.groups = mesh_groups(plan, contacts, short_beam, part);
-    } catch (const ResourceLimit&) {
-      throw;  // too large for memory: says so itself
     } catch (const std::runtime_error& e) {
       // Two tessellations of one cone overlap along a short beam, and the union's slivers can fold once rounded.
-      if (!stats.short_beams) throw;
+      if (!stats.short_beams || !is_geometry_failure(e)) throw;
       fail_short_beams(plan, std::string("the mesh could not unite their hubs (") + e.what() + ")");
     }
     stats.foreign_groups = static_cast<std::int64_t>(plan.groups.groups.size());
@@ -105,6 +103,10 @@ std::vector<char> fit_beams_and_unite(MeshPlan& plan, const std::vector<char>& b
 }
 
 }  // namespace
+
+bool is_geometry_failure(const std::exception& e) {
+  return !dynamic_cast<const ResourceLimit*>(&e) && !dynamic_cast<const Cancelled*>(&e);
+}
 
 void fail_short_beams(const MeshPlan& plan, const std::string& why) {
   fail_input("hub", std::to_string(plan.stats.short_beams) + " beams are too short for the collars of their crowded "

@@ -5,6 +5,7 @@
 // a file chunk after chunk (write_lattice_stl), from the same placement arithmetic so the pieces always match.
 #include <array>
 #include <cstdint>
+#include <exception>
 #include <functional>
 #include <string>
 #include <vector>
@@ -63,6 +64,10 @@ using HubsNeeded = std::function<std::vector<char>(const MeshPlan&)>;
 // naming the first short beam when there are short beams).
 MeshPlan plan_lattice_mesh(const FlatLattice& lattice, const MeshOptions& options, Progress& progress,
                            const HubsNeeded& needed = {});
+
+// Whether an error thrown while hubs are united or cut is the geometry's failure, which a retry or the short
+// beams' refusal may answer: not a cancel, nor a refusal for memory, which say themselves.
+bool is_geometry_failure(const std::exception& e);
 
 // The refusal of a lattice whose short beams' united hubs gave no mesh (`why`: the union's or the Boolean's
 // error): InvalidInput "hub", naming how many beams are short and the first, and what helps.

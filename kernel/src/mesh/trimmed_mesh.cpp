@@ -18,7 +18,6 @@
 #include "mesh/mesh_plan.hpp"
 #include "mesh/vertex_key.hpp"
 #include "steady/core/errors.hpp"
-#include "steady/core/progress.hpp"
 
 namespace steady {
 
@@ -287,7 +286,7 @@ TriangleMesh trimmed_lattice_mesh(const FlatLattice& f, const MeshOptions& optio
   } catch (const std::runtime_error& e) {
     // Where the body cuts a group of short beams' hubs, the cut can meet what is left of the slivers between the
     // two tessellations of a short beam's cone: said as the short beams' refusal, which names what helps.
-    if (!plan.stats.short_beams || dynamic_cast<const ResourceLimit*>(&e) || dynamic_cast<const Cancelled*>(&e)) throw;
+    if (!plan.stats.short_beams || !is_geometry_failure(e)) throw;
     fail_short_beams(plan, std::string("the body's cut through their united hubs failed (") + e.what() + ")");
   }
   round_to_floats(inside.mesh);
