@@ -34,6 +34,7 @@
 #include <sstream>
 
 #include "brep/child_reader.hpp"
+#include "brep/connected_face_order.hpp"
 #include "brep/occ_progress.hpp"
 #include "brep/step_reproducible.hpp"
 #include "steady/core/errors.hpp"
@@ -139,7 +140,8 @@ void write_step_assembly(const std::string& path, const std::vector<StepPart>& p
   TDataStd_Name::Set(assembly, assembly_name.c_str());
   for (const StepPart& p : parts) {
     if (p.shape.IsNull()) fail_input("parts", "part '" + p.name + "' has no shape");
-    const TDF_Label label = shapes->AddShape(p.shape, Standard_False);
+    // Faces in connected order: readers built on OpenCASCADE then orient each shell in linear time (see there).
+    const TDF_Label label = shapes->AddShape(with_faces_in_connected_order(p.shape), Standard_False);
     TDataStd_Name::Set(label, p.name.c_str());
     if (p.has_color)
       colors->SetColor(label, Quantity_Color(p.color[0], p.color[1], p.color[2], Quantity_TOC_RGB), XCAFDoc_ColorGen);

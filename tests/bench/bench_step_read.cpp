@@ -1,0 +1,133 @@
+// How long OpenCASCADE's STEP reader (the one FreeCAD and gmsh use) takes to read a lattice part back, with the
+// part's faces in the order they were built against the order the writer now puts them in (each face sharing an
+// edge with one before it, brep/connected_face_order.hpp). The reader orients every shell by scanning its remaining
+// faces from the first after each face it adds: quadratic in the faces unless they come connected.
+//
+// Default: issue 14's swirled lattice (bench_brep's part 2 and bench_step_with_skin.py: one node of radius 0.25,
+// three beams, U a slight swirl) at 18 x 18 x 12 nodes (10,908 beams) in a cylinder 3 degrees off its beams with a
+// 0.4 skin, and the main job (3,792 beams, 1.2 mm skin). --long: the swirled lattice at 24 x 24 x 16 (26,000 beams).
+// Both files of a case hold the same lattice and skin solids; the baseline is written by OpenCASCADE's STEP
+// writer as the shapes are (pcurves on, as the kernel writes them), ours by write_step_assembly. Each read runs in
+// a reader process (read_step_parts), which also checks the shapes (BRepCheck); medians of 3 reads, alternated.
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRep_Builder.hxx>
+#include <IFSelect_ReturnStatus.hxx>
+#include <Interface_Static.hxx>
+#include <STEPControl_Writer.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS_Compound.hxx>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include "bench_common.hpp"
+#include "brick_definition.hpp"
+#include "steady/brep/brep_io.hpp"
+#include "steady/brep/step_assembly.hpp"
+#include "steady/brep/trim.hpp"
+#include "steady/lattice/flat_lattice.hpp"
+#include "steady/lattice/lattice_io.hpp"
+#include "test_support.hpp"
+
+using namespace steady;
+
+namespace {
+
+int faces_of(const TopoDS_Shape& s) {
+  int n = 0;
+  for (TopExp_Explorer x(s, TopAbs_FACE); x.More(); x.Next()) ++n;
+  return n;
+}
+
+// The shapes as built, in one file by OpenCASCADE's own writer (no reordering).
+void write_as_built(const std::string& path, const TopoDS_Shape& lattice, const TopoDS_Shape& skin) {
+  TopoDS_Compound both;
+  const BRep_Builder b;
+  b.MakeCompound(both);
+  b.Add(both, lattice);
+  b.Add(both, skin);
+  STEPControl_Writer writer;
+  Interface_Static::SetIVal("write.surfacecurve.mode", 1);
+  if (writer.Transfer(both, STEPControl_AsIs) != IFSelect_RetDone || writer.Write(path.c_str()) != IFSelect_RetDone)
+    throw std::runtime_error("cannot write " + path);
+}
+
+void measure(const std::string& what, const FlatLattice& lattice, const TopoDS_Shape& body, double skin) {
+  TrimOptions options;
+  options.skin = skin;
+  options.unite_skin = false;
+  TrimResult trimmed;
+  const double trim_seconds = bench::seconds_of([&] { trimmed = trim_lattice(lattice, body, options); });
+  const std::string dir = std::filesystem::temp_directory_path().string() + "/steady_bench_step_read_" +
+                          std::to_string(::getpid());
+  std::filesystem::create_directories(dir);
+  const std::string built = dir + "/as_built.step", connected = dir + "/connected.step";
+  write_as_built(built, trimmed.lattice, trimmed.skin);
+  write_step_assembly(connected, {{"Lattice", trimmed.lattice}, {"Skin", trimmed.skin}});
+  std::vector<double> a, c;
+  std::size_t solids_a = 0, solids_c = 0;
+  bool valid = true;
+  for (int run = 0; run < 3; ++run) {
+    a.push_back(bench::seconds_of([&] {
+      const auto parts = read_step_parts(built);
+      solids_a = parts.size();
+    }));
+    c.push_back(bench::seconds_of([&] {
+      const auto parts = read_step_parts(connected);
+      solids_c = parts.size();
+      for (const StepPart& p : parts) valid = valid && is_valid(p.shape);
+    }));
+  }
+  std::sort(a.begin(), a.end());
+  std::sort(c.begin(), c.end());
+  std::printf("%s: %zu beams, %d faces (lattice %d), trimmed in %.1f s; files %.1f / %.1f MB\n", what.c_str(),
+              lattice.beams.size(), faces_of(trimmed.lattice) + faces_of(trimmed.skin), faces_of(trimmed.lattice),
+              trim_seconds, std::filesystem::file_size(built) / 1e6, std::filesystem::file_size(connected) / 1e6);
+  std::printf("  read back (median of 3): faces as built %.1f s, in connected order %.1f s: %.2fx faster; "
+              "parts %zu / %zu, connected file's parts %s\n",
+              a[1], c[1], a[1] / c[1], solids_a, solids_c, valid ? "valid" : "INVALID");
+  std::filesystem::remove_all(dir);
+}
+
+// The swirled lattice of bench_brep's part 2 and its cylinder (radius half the smaller width, 0.9 of the height,
+// axis 3 degrees off W).
+void measure_swirled(Counts c) {
+  test::BrickDefinition d;
+  d.nodes = {{{0, 0, 0}, 0.25}};
+  const double radii[3][2] = {{0.10, 0.12}, {0.11, 0.09}, {0.08, 0.10}};
+  for (int k = 0; k < 3; ++k) d.beams.push_back({0, k == 0, k == 1, k == 2, 0, radii[k][0], radii[k][1]});
+  d.counts = c;
+  d.u = {Similarity::swirl(0.004, {0, 0, 1}, {0, -250, 0}, 1.0005)};
+  d.v = {Similarity::translation({0, 1, 0})};
+  d.w = {Similarity::translation({0, 0, 1})};
+  const FlatLattice f = flatten(Lattice(std::move(d)));
+  Vec3 lo(1e300), hi(-1e300);
+  for (const Ball& b : f.balls) {
+    lo = glm::min(lo, b.center);
+    hi = glm::max(hi, b.center);
+  }
+  const Vec3 mid = 0.5 * (lo + hi);
+  const double radius = 0.5 * std::min(hi.x - lo.x, hi.y - lo.y), height = 0.9 * (hi.z - lo.z), tilt = 0.05;
+  const TopoDS_Shape body =
+      BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(mid.x, mid.y, mid.z - height / 2), gp_Dir(tilt, 0.6 * tilt, 1)), radius,
+                               height)
+          .Shape();
+  measure("swirled lattice " + std::to_string(c.u) + " x " + std::to_string(c.v) + " x " + std::to_string(c.w), f,
+          body, 0.4);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  measure_swirled(bench::long_run(argc, argv) ? Counts{24, 24, 16} : Counts{18, 18, 12});
+  const std::string data = STEADY_TEST_DATA;
+  const Lattice lattice = lattice_from_json(test::file_bytes(data + "/main_job_octet.json"));
+  const TopoDS_Shape cylinder = brep_from_text(test::file_bytes(data + "/main_job_cylinder.brep"), "body");
+  measure("main job", flatten(lattice), cylinder, 1.2);
+  return 0;
+}
