@@ -236,10 +236,11 @@ void bind_brep(py::module_& m) {
       [](const Lattice& lat, const std::string& path, const py::object& body, const std::string& policy, double skin,
          const std::string& dangling, const std::string& lattice_name, const std::string& skin_name,
          const py::object& lattice_color, const py::object& skin_color, const py::object& progress,
-         const py::object& stats) {
+         const py::object& stats, bool united) {
         const steady::LatticePartRequest request = part_request(body, policy, skin, dangling);
         require_stats_target(stats);
         steady::StepNames names;
+        names.layout = united ? steady::StepLayout::OneSolid : steady::StepLayout::Assembly;
         names.lattice = lattice_name;
         names.skin = skin_name;
         names.lattice_color = to_color(lattice_color, "lattice_color");
@@ -257,10 +258,12 @@ void bind_brep(py::module_& m) {
       py::arg("path"), py::arg("body") = py::none(), py::arg("policy") = "clip", py::arg("skin") = 0.0,
       py::arg("dangling") = "keep", py::arg("lattice_name") = "Lattice", py::arg("skin_name") = "Skin",
       py::arg("lattice_color") = py::make_tuple(0.85, 0.55, 0.20), py::arg("skin_color") = py::make_tuple(0.55, 0.65, 0.80),
-      py::arg("progress") = py::none(), py::arg("stats") = py::none(),
+      py::arg("progress") = py::none(), py::arg("stats") = py::none(), py::arg("united") = false,
       "Writes a STEP assembly: the lattice (trimmed to the inner offset when there is a skin) and the skin as two "
       "named, coloured parts. Pieces of the trimmed lattice that hold no hub built whole (ends of beams and hubs cut "
       "at the skin's inner wall, touching only the skin) are part of the skin, so the lattice part is one solid. "
+      "united=True: one part instead, named lattice_name, the lattice united with its skin (the solid brep() "
+      "gives): the part as printed, and what a mesher for analysis takes (docs/fea.md). "
       "progress: as for brep(); a cancelled call raises steadylattice.Cancelled and leaves "
       "the file untouched (it is written only at the end). stats: None or a dict, filled as by brep() (without "
       "volume), with skin_pieces and skin_pieces_volume: the pieces given to the skin.");

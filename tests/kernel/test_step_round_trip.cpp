@@ -26,10 +26,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <random>
 #include <thread>
 
 #include <unistd.h>
 
+#include "test_lattices.hpp"
 #include "test_support.hpp"
 #include "brep/pcurve_pieces.hpp"
 #include "steady/brep/brep_io.hpp"
@@ -204,6 +206,31 @@ TEST(StepRoundTrip, SkinnedAssemblyInATiltedCylinderComesBackValid) {
   expect_same_solids(written.lattice, back[0].shape, "tilted cylinder's lattice through STEP");
   expect_same_solids(written.skin, back[1].shape, "tilted cylinder's skin through STEP");
   std::remove(path.c_str());
+}
+
+
+// StepLayout::OneSolid: one part, the lattice united with its skin, as lattice_part_brep builds it.
+TEST(StepRoundTrip, AOneSolidPartIsTheLatticeUnitedWithItsSkin) {
+  std::mt19937_64 rng(3);
+  const FlatLattice f = flatten(test::bcc_lattice(rng, {4, 4, 4}));
+  LatticePartRequest request;
+  request.body_brep = brep_to_text(BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(1.5, 1.5, 0.2), gp_Dir(0.1, 0, 1)), 1.4,
+                                                            2.6).Shape());
+  request.trim.skin = 0.2;
+  StepNames names;
+  names.layout = StepLayout::OneSolid;
+  names.lattice = "Part";
+  const std::string path = temp_path("one_solid.step");
+  TrimStats stats;
+  write_lattice_step(path, f, request, names, no_progress(), &stats);
+  EXPECT_GT(stats.crossing_hubs, 0);
+  const std::vector<StepPart> back = read_step_parts(path);
+  std::remove(path.c_str());
+  ASSERT_EQ(back.size(), 1u);
+  EXPECT_EQ(back[0].name, "Part");
+  const TopoDS_Shape united = brep_from_text(lattice_part_brep(f, request), "part");
+  expect_same_solids(united, back[0].shape, "one-solid part through STEP");
+  EXPECT_EQ(solids_of(back[0].shape).size(), 1u);
 }
 
 

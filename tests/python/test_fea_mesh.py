@@ -50,3 +50,28 @@ def test_gmsh_meshes_a_crowded_skinned_part_from_its_step(gmsh_session, tmp_path
     assert count > 10000
     # Chords of 12 segments a turn lose about 1 % of a beam's cross-section; measured 0.69 %.
     assert abs(volume - exact) < 0.02 * exact, (volume, exact)
+
+
+def test_gmsh_meshes_the_part_as_one_solid_from_its_step(gmsh_session, tmp_path):
+    """write_step(united=True): the lattice united with its skin, one solid (one material), meshed without a
+    fragment; the main job meshes this way (tests/bench/bench_gmsh_main_job.py --long), where its assembly does not."""
+    with open(os.path.join(DATA, "main_job_octet.json")) as f:
+        lattice = sl.Lattice.from_json(f.read())
+    body = box_brep(str(tmp_path), (11.5, 11.5, 7.5), (17.0, 17.0, 13.0))
+    step = str(tmp_path / "part.step")
+    lattice.write_step(step, body=body, skin=1.0, united=True, lattice_name="Part")
+    written = sl.read_step(step)
+    assert [(p["name"], p["solids"], p["valid"]) for p in written] == [("Part", 1, True)]
+    united = sl.brep_properties(lattice.brep(body, skin=1.0))
+    assert abs(written[0]["volume"] - united["volume"]) < 1e-6 * united["volume"]
+
+    gmsh.model.add("part")
+    gmsh.model.occ.importShapes(step)
+    gmsh.model.occ.synchronize()
+    assert len(gmsh.model.getEntities(3)) == 1
+    gmsh.option.setNumber("Mesh.MeshSizeMax", 1.0)
+    gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 12)
+    gmsh.model.mesh.generate(3)
+    count, volume = tetrahedra_volume()
+    assert count > 10000
+    assert abs(volume - united["volume"]) < 0.02 * united["volume"], (volume, united["volume"])

@@ -68,17 +68,18 @@ void write_lattice_step(const std::string& path, const FlatLattice& lattice, con
   check_step_name(names.lattice, "lattice_name");
   check_step_name(names.skin, "skin_name");
   check_step_name(names.assembly, "assembly_name");
-  LatticePartRequest separate = request;
-  separate.trim.unite_skin = false;
+  const bool one_solid = names.layout == StepLayout::OneSolid;
+  LatticePartRequest trim_request = request;
+  trim_request.trim.unite_skin = one_solid;
   progress.set_total(kStepPartUnits + kStepFileUnits);
   TrimResult r;
   {
     Progress part(progress, kStepPartUnits);
-    r = make_part(lattice, separate, part);
+    r = make_part(lattice, trim_request, part);
   }
   if (stats) *stats = r.stats;
-  std::vector<StepPart> parts = {{names.lattice, r.lattice, names.lattice_color, true, {}}};
-  if (!r.skin.IsNull()) parts.push_back({names.skin, r.skin, names.skin_color, true, {}});
+  std::vector<StepPart> parts = {{names.lattice, one_solid ? r.part : r.lattice, names.lattice_color, true, {}}};
+  if (!one_solid && !r.skin.IsNull()) parts.push_back({names.skin, r.skin, names.skin_color, true, {}});
   {
     Progress part(progress, kStepFileUnits);
     write_step_assembly(path, parts, names.assembly, part);

@@ -24,7 +24,13 @@ struct LatticePartRequest {
 std::string lattice_part_brep(const FlatLattice& lattice, const LatticePartRequest& request,
                               Progress& progress = no_progress(), TrimStats* stats = nullptr);
 
+// What a lattice part's STEP file holds: the lattice and its skin as two parts that share the faces of the skin's
+// inner wall (an assembly), or the part as one solid, the lattice united with its skin (named `lattice`): the
+// part as it is printed, one material, and what a mesher for analysis takes in one piece (docs/fea.md).
+enum class StepLayout { Assembly, OneSolid };
+
 struct StepNames {
+  StepLayout layout = StepLayout::Assembly;
   std::string assembly = "LatticePart";
   std::string lattice = "Lattice";
   std::string skin = "Skin";
@@ -34,7 +40,8 @@ struct StepNames {
 
 // Writes a STEP assembly: the lattice (trimmed to the inner offset when there is a skin) and the skin as two
 // named, coloured parts (the lattice alone when there is no skin). Pieces of the trimmed lattice that hold no hub
-// built whole go to the skin part (TrimStats::skin_pieces). Cancelled leaves the file untouched. `stats`: where
+// built whole go to the skin part (TrimStats::skin_pieces). With StepLayout::OneSolid, one part: the lattice
+// united with its skin, the shape lattice_part_brep gives. Cancelled leaves the file untouched. `stats`: where
 // given, how the trim went.
 void write_lattice_step(const std::string& path, const FlatLattice& lattice, const LatticePartRequest& request,
                         const StepNames& names = {}, Progress& progress = no_progress(), TrimStats* stats = nullptr);
