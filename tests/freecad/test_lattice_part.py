@@ -162,6 +162,10 @@ class LatticePartTest(unittest.TestCase):
         # the kernel integrates adaptively: skin and lattice add up to the united part
         self.assertAlmostEqual(sum(p["volume"] for p in parts), volume, delta=1e-6 * volume)
         self.assertAlmostEqual(Part.read(step).Volume, volume, delta=1e-4 * volume)  # FreeCAD reads it too
+        # as one solid: the part's shape, named as the part
+        solid = sl.read_step(api.export([part], os.path.join(folder, "part_solid.step"), united=True))
+        self.assertEqual([(p["name"], p["solids"], p["valid"]) for p in solid], [(part.Label, 1, True)])
+        self.assertAlmostEqual(solid[0]["volume"], volume, delta=1e-6 * volume)
         path = os.path.join(folder, "part.FCStd")
         self.doc.saveAs(path)
         name, lattice_name = part.Name, self.lattice.Name

@@ -19,13 +19,15 @@ def export_shape(obj):
     return obj.Shape
 
 
-def _export_step(objects, path):
+def _export_step(objects, path, united):
     """STEP with one named part per object (FreeCAD's Import keeps labels and colours); a single LatticePart is
-    written as an assembly of its skin and its lattice, two named and coloured parts."""
+    written as an assembly of its skin and its lattice, two named and coloured parts, or with `united` as one
+    solid (the lattice united with its skin)."""
     import Import
     if len(objects) == 1 and types.is_part(objects[0]):
         with LongOperation("Exporting %s" % objects[0].Label) as report:
-            lattice_part.write_step_assembly(objects[0], path, report)  # trims again: shows progress, cancellable
+            # trims again: shows progress, cancellable
+            lattice_part.write_step_assembly(objects[0], path, report, united=united)
         return
     shapes = [export_shape(o) for o in objects]
     if all(shape is o.Shape for shape, o in zip(shapes, objects)):
@@ -48,9 +50,11 @@ def _export_step(objects, path):
         FreeCAD.closeDocument(scratch.Name)
 
 
-def export(objects, path, tolerance=None):
+def export(objects, path, tolerance=None, united=False):
     """Writes `objects` to `path`; the format follows the extension:
-    .step/.stp (STEP, one part per object with its name; a LatticePart alone: its skin and lattice as two parts),
+    .step/.stp (STEP, one part per object with its name; a LatticePart alone: its skin and lattice as two parts,
+    or with united=True one solid, the lattice united with its skin: what a mesher for analysis takes,
+    docs/fea.md),
     .brep/.brp (BREP of the compound),
     .json (the lattice file of a single SteadyLattice),
     .stl/.obj (a single SteadyLattice's mesh, straight from the kernel, at `tolerance`: the chord error in document
@@ -63,7 +67,7 @@ def export(objects, path, tolerance=None):
         raise ValueError("objects: nothing to export")
     extension = os.path.splitext(path)[1].lower()
     if extension in (".step", ".stp"):
-        _export_step(objects, path)
+        _export_step(objects, path, united)
     elif extension in (".brep", ".brp"):
         import Part
         Part.Compound([export_shape(o) for o in objects]).exportBrep(path)

@@ -43,16 +43,18 @@ def part_brep(obj, report=None, stats=None):
     return lattice.brep(body, policy, skin, dangling, progress=report, stats=stats, log=_log)
 
 
-def write_step_assembly(obj, path, report=None):
-    """STEP with the skin and the lattice as two named, coloured parts (the kernel's XCAF writer).
+def write_step_assembly(obj, path, report=None, united=False):
+    """STEP with the skin and the lattice as two named, coloured parts (the kernel's XCAF writer); with `united`
+    one part named as the object, the lattice united with its skin (its Shape).
     report(fraction) -> False cancels (steadylattice.Cancelled; the file is not written).
     Returns the trim's stats (a dict; skin_pieces: pieces of the lattice that touch only the skin, written as part
     of the skin so that the lattice part is one solid)."""
     lattice, body, policy, skin, dangling = kernel_request(obj)
     stats = {}
-    lattice.write_step(path, body, policy, skin, dangling, lattice_name=obj.Label + " lattice",
-                       skin_name=obj.Label + " skin", progress=report, stats=stats)
-    if stats.get("skin_pieces"):
+    lattice_name = obj.Label if united else obj.Label + " lattice"
+    lattice.write_step(path, body, policy, skin, dangling, lattice_name=lattice_name, skin_name=obj.Label + " skin",
+                       progress=report, stats=stats, united=united)
+    if stats.get("skin_pieces") and not united:
         FreeCAD.Console.PrintMessage(
             "%s: %d pieces of the lattice (%.4g mm^3) touch only the skin; they are part of \"%s skin\" in %s\n"
             % (obj.Label, stats["skin_pieces"], stats["skin_pieces_volume"], obj.Label, path))
