@@ -26,7 +26,7 @@
 #include <unistd.h>
 
 #include "bench_common.hpp"
-#include "brick_definition.hpp"
+#include "sample_lattices.hpp"
 #include "steady/brep/brep_io.hpp"
 #include "steady/brep/step_assembly.hpp"
 #include "steady/brep/trim.hpp"
@@ -97,15 +97,7 @@ void measure(const std::string& what, const FlatLattice& lattice, const TopoDS_S
 // The swirled lattice of bench_brep's part 2 and its cylinder (radius half the smaller width, 0.9 of the height,
 // axis 3 degrees off W).
 void measure_swirled(Counts c) {
-  test::BrickDefinition d;
-  d.nodes = {{{0, 0, 0}, 0.25}};
-  const double radii[3][2] = {{0.10, 0.12}, {0.11, 0.09}, {0.08, 0.10}};
-  for (int k = 0; k < 3; ++k) d.beams.push_back({0, k == 0, k == 1, k == 2, 0, radii[k][0], radii[k][1]});
-  d.counts = c;
-  d.u = {Similarity::swirl(0.004, {0, 0, 1}, {0, -250, 0}, 1.0005)};
-  d.v = {Similarity::translation({0, 1, 0})};
-  d.w = {Similarity::translation({0, 0, 1})};
-  const FlatLattice f = flatten(Lattice(std::move(d)));
+  const FlatLattice f = flatten(test::swirled_scale_lattice(c));
   Vec3 lo(1e300), hi(-1e300);
   for (const Ball& b : f.balls) {
     lo = glm::min(lo, b.center);

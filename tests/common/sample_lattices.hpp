@@ -71,6 +71,20 @@ inline Lattice cylindrical_bcc(Counts counts, double inner_radius = 10.0) {
 }
 
 // Bent, twisted and tapered: swirl U (bend + taper), screw V (twist), swirl W, cumulative over the counts.
+// Issue 14's scale lattice (bench_brep's part 2, bench_step_with_skin.py): one node of radius 0.25 and three beams
+// of unequal end radii a unit cell, U a slight swirl (graded), V and W translations.
+inline Lattice swirled_scale_lattice(Counts counts) {
+  BrickDefinition d;
+  d.nodes = {{{0, 0, 0}, 0.25}};
+  const double radii[3][2] = {{0.10, 0.12}, {0.11, 0.09}, {0.08, 0.10}};
+  for (int k = 0; k < 3; ++k) d.beams.push_back({0, k == 0, k == 1, k == 2, 0, radii[k][0], radii[k][1]});
+  d.counts = counts;
+  d.u = {Similarity::swirl(0.004, {0, 0, 1}, {0, -250, 0}, 1.0005)};
+  d.v = {Similarity::translation({0, 1, 0})};
+  d.w = {Similarity::translation({0, 0, 1})};
+  return Lattice(std::move(d));
+}
+
 inline Lattice bent_twisted_tapered(Counts counts, double spacing = 1.0, double radius = 0.12) {
   const double lu = spacing * static_cast<double>(counts.u - 1), lv = spacing * static_cast<double>(counts.v - 1),
                lw = spacing * static_cast<double>(counts.w - 1);

@@ -38,7 +38,7 @@
 #include "lattice_membership.hpp"
 #include "occ_reference.hpp"
 #include "test_lattices.hpp"
-#include "brick_definition.hpp"
+#include "sample_lattices.hpp"
 
 namespace steady {
 namespace {
@@ -426,15 +426,7 @@ TEST(Trim, TiltedCylinderThroughTheRetriesAgreesWithMonteCarlo) {
   // first Common of some boundary cluster was wrong (measured: a sphere face with a self-intersecting wire), so
   // the retries (other layout of the spheres, turned frame, fuzzy Common) are what makes it trim. Whatever path it takes, the
   // part must be valid and its volume that of the lattice inside the cylinder.
-  test::BrickDefinition d;
-  d.nodes = {{{0, 0, 0}, 0.25}};
-  const double radii[3][2] = {{0.10, 0.12}, {0.11, 0.09}, {0.08, 0.10}};
-  for (int k = 0; k < 3; ++k) d.beams.push_back({0, k == 0, k == 1, k == 2, 0, radii[k][0], radii[k][1]});
-  d.counts = {10, 10, 11};
-  d.u = {Similarity::swirl(0.004, {0, 0, 1}, {0, -250, 0}, 1.0005)};
-  d.v = {Similarity::translation({0, 1, 0})};
-  d.w = {Similarity::translation({0, 0, 1})};
-  const FlatLattice f = flatten(Lattice(std::move(d)));
+  const FlatLattice f = flatten(test::swirled_scale_lattice({10, 10, 11}));
   Vec3 lo(1e300), hi(-1e300);
   for (const Ball& b : f.balls) {
     lo = glm::min(lo, b.center);
