@@ -1,6 +1,8 @@
 // Hubs built as one (hub_group.hpp): the group's Fuse reports to the build's Progress and stops at a cancel.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -79,6 +81,34 @@ TEST(HubGroup, ABuildCancelledWhileItsGroupIsFusedThrowsCancelled) {
   Recorder r(full.calls / 2);
   EXPECT_THROW(build_lattice_brep(f, SeamPreference::FewestCrossings, r.progress), Cancelled);
   EXPECT_EQ(r.calls, full.calls / 2);
+}
+
+// The bar moves while a group is fused: its Fuse has a share of the build's progress (the faces' share, split
+// once the hubs that may join a group are known). Before, the share was zero and the fraction stood still through
+// the whole Fuse, which takes minutes from a few hundred hubs: almost every callback of the build reported the
+// same fraction.
+TEST(HubGroup, TheBuildsFractionMovesWhileItsGroupIsFused) {
+  std::vector<Ball> balls;
+  for (int i = 0; i < 24; ++i) balls.push_back({{0.5 * i, 0, 0}, 0.3});
+  const FlatLattice f = make_flat_lattice(balls, {});
+  std::vector<double> fractions;
+  Progress progress([&](double x) {
+    fractions.push_back(x);
+    return true;
+  });
+  progress.set_report_interval(std::chrono::milliseconds(0));
+  const LatticeBrep b = build_lattice_brep(f, SeamPreference::FewestCrossings, progress);
+  EXPECT_EQ(b.stats.foreign_hubs, 24);
+  ASSERT_GE(fractions.size(), 100u);
+  std::size_t longest = 0, run = 0;
+  for (std::size_t i = 0; i < fractions.size(); ++i) {
+    if (i > 0) EXPECT_GE(fractions[i], fractions[i - 1]) << "call " << i;
+    run = i > 0 && fractions[i] == fractions[i - 1] ? run + 1 : 1;
+    longest = std::max(longest, run);
+  }
+  EXPECT_LT(longest, fractions.size() / 4) << "the fraction stood still for " << longest << " of " << fractions.size()
+                                           << " calls";
+  EXPECT_EQ(fractions.back(), 1.0);
 }
 
 }  // namespace

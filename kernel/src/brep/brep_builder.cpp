@@ -446,6 +446,8 @@ namespace {
 constexpr std::int64_t kShapeUnits = 20;
 constexpr std::int64_t kHubUnits = 2;
 constexpr std::int64_t kBeamUnits = 1;
+// A hub in a group's Fuse costs at least what a distinct core's Fuse does (a group's Fuse grows faster than its hubs).
+constexpr std::int64_t kGroupHubUnits = kShapeUnits;
 
 // Everything one build of pieces works on; its steps below fill it in order.
 struct PieceBuild {
@@ -463,6 +465,11 @@ struct PieceBuild {
   std::int64_t hub_groups = 0, grouped_hubs = 0;  // crowded hubs built as one (group_short_beams)
   std::int64_t foreign_groups = 0, foreign_hubs = 0;  // hubs meeting foreign ones, built as one
   std::string group_failure;                      // why a group could not be built, for the error
+  std::int64_t built_beams = 0;                   // beams with faces to build (lay_out_shapes)
+  // After the cores, the bar's rest: the groups' Fuses, then the faces (build_brep_pieces); the units it keeps
+  // for the groups and those they took.
+  Progress* tail = nullptr;
+  std::int64_t group_units_reserved = 0, group_units_given = 0;
 };
 
 void check_selection(const FlatLattice& f, const BrepSelection& selection) {
@@ -539,10 +546,9 @@ void lay_out_shapes(PieceBuild& b) {
   b.progress.check();
   b.catalog = catalog_hubs(b.geometry);
   b.shapes.resize(b.catalog.shapes.size());
-  std::int64_t built_beams = 0;
-  for (const BeamWork& w : b.beams) built_beams += w.kind != BeamKind::None;
+  for (const BeamWork& w : b.beams) b.built_beams += w.kind != BeamKind::None;
   b.progress.set_total(kShapeUnits * static_cast<std::int64_t>(b.shapes.size()) +
-                       kHubUnits * static_cast<std::int64_t>(b.hubs.size()) + kBeamUnits * built_beams + 1);
+                       kHubUnits * static_cast<std::int64_t>(b.hubs.size()) + kBeamUnits * b.built_beams + 1);
   tbb::parallel_for(std::size_t(0), b.shapes.size(), [&](std::size_t s) {
     b.progress.check();
     ShapeWork& w = b.shapes[s];
@@ -603,6 +609,34 @@ std::vector<std::int64_t> short_whole_beams(const PieceBuild& b) {
     const BeamWork& w = b.beams[e];
     if (w.kind == BeamKind::Whole && !(w.end[0].axial + w.end[1].axial < b.frustums[e].cone.length * (1.0 - 1e-9)))
       out.push_back(e);
+  }
+  return out;
+}
+
+// Hubs that may be built in a group: those meeting foreign elements and those at short whole beams. The groups
+// of both kinds hold no others, and no hub is in two.
+std::int64_t hubs_that_may_group(const PieceBuild& b) {
+  std::vector<char> may(b.hubs.size(), 0);
+  for (std::int64_t e : short_whole_beams(b))
+    for (const EndCircle& ec : b.beams[e].end)
+      if (ec.hub >= 0) may[ec.hub] = 1;
+  if (b.selection.foreign != nullptr) {
+    std::vector<std::int64_t> hub_of(b.f.ball_count(), -1);
+    for (std::size_t h = 0; h < b.hubs.size(); ++h) hub_of[b.hubs[h].ball] = static_cast<std::int64_t>(h);
+    for (const auto& [x, y] : b.selection.foreign->joined)
+      for (std::int64_t ball : {x, y})
+        if (hub_of[ball] >= 0) may[hub_of[ball]] = 1;
+  }
+  return std::count(may.begin(), may.end(), char(1));
+}
+
+// The share of the bar of each group's Fuse, out of what the tail keeps for groups (hubs_that_may_group).
+std::vector<std::int64_t> group_units(PieceBuild& b, const std::vector<std::vector<std::size_t>>& groups) {
+  std::vector<std::int64_t> out;
+  for (const std::vector<std::size_t>& g : groups) {
+    out.push_back(std::min(kGroupHubUnits * static_cast<std::int64_t>(g.size()),
+                           b.group_units_reserved - b.group_units_given));
+    b.group_units_given += out.back();
   }
   return out;
 }
@@ -738,6 +772,7 @@ void group_short_beams(PieceBuild& b) {
   std::vector<std::string> failures(groups.size());
   std::vector<char> built(groups.size(), 0);
   std::vector<HubGroup> fused(groups.size());
+  const std::vector<std::int64_t> units = group_units(b, groups);
   tbb::parallel_for(std::size_t(0), groups.size(), [&](std::size_t g) {
     b.progress.check();
     std::vector<GroupMember> members;
@@ -755,7 +790,7 @@ void group_short_beams(PieceBuild& b) {
       members.push_back(std::move(m));
     }
     try {
-      Progress fuse(b.progress, 0);  // no share of the bar (set before the groups were known), but reports and stops
+      Progress fuse(*b.tail, units[g]);
       fused[g] = fuse_hub_group(members, g, "of crowded nodes joined by beams too short for their collars", fuse);
       built[g] = 1;
     } catch (const InvalidInput& error) {
@@ -835,6 +870,7 @@ void group_foreign_contacts(PieceBuild& b) {
   std::vector<std::vector<std::shared_ptr<const HubCore>>> cores(groups.size());
   std::vector<HubGroup> fused(groups.size());
   std::vector<std::string> failures(groups.size());
+  const std::vector<std::int64_t> units = group_units(b, groups);
   tbb::parallel_for(std::size_t(0), groups.size(), [&](std::size_t g) {
     b.progress.check();
     try {
@@ -862,7 +898,7 @@ void group_foreign_contacts(PieceBuild& b) {
                                   std::to_string(hub.stumps[s].first) + " than the beam has room for");
         members.push_back(std::move(m));
       }
-      Progress fuse(b.progress, 0);  // as in group_short_beams
+      Progress fuse(*b.tail, units[g]);
       fused[g] = fuse_hub_group(members, g, "whose elements meet elements of other nodes", fuse);
     } catch (const InvalidInput& error) {
       failures[g] = error.what();
@@ -1207,8 +1243,16 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
   });
   // Tight collars first: the beams they make fit need not join a foreign contact's group.
   if (selection.crowded_fallbacks) tighten_short_beams(b);
+  // The rest of the bar, the faces' share, is shared with the groups' Fuses now that the hubs that may join one
+  // are known: a group's Fuse takes minutes from a few hundred hubs, and the bar moves while it runs.
+  const std::int64_t face_units = kHubUnits * static_cast<std::int64_t>(b.hubs.size()) + kBeamUnits * b.built_beams;
+  Progress tail(progress, face_units);
+  b.group_units_reserved = kGroupHubUnits * hubs_that_may_group(b);
+  tail.set_total(b.group_units_reserved + face_units);
+  b.tail = &tail;
   group_foreign_contacts(b);
   if (selection.crowded_fallbacks) group_short_beams(b);
+  tail.advance(b.group_units_reserved - b.group_units_given);  // the share of the hubs that joined no group
   check_whole_beams_fit(b);
   tbb::parallel_for(std::int64_t(0), f.beam_count(), [&](std::int64_t e) {
     if (b.beams[e].kind == BeamKind::None) return;
@@ -1216,16 +1260,18 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
     plan_beam(b, e, cut_edges);
   });
   tbb::parallel_for(std::size_t(0), b.hubs.size(), [&](std::size_t h) {  // spherical faces of clean hubs
-    progress.advance(kHubUnits);
+    tail.advance(kHubUnits);
     if (b.hubs[h].kind != 0) return;
     const HubPlacement& place = b.catalog.placements[h];
     build_sphere_face(b.builder, f.balls[b.hubs[h].ball], place, b.shapes[place.shape], b.hubs[h], b.beams);
   });
   tbb::parallel_for(std::int64_t(0), f.beam_count(), [&](std::int64_t e) {
     if (b.beams[e].kind == BeamKind::None) return;
-    progress.advance(kBeamUnits);
+    tail.advance(kBeamUnits);
     build_beam(b, e);
   });
+  tail.finish();  // the beams that a group took in had their share counted
+  b.tail = nullptr;
   progress.check();  // the last chance to stop: cut_edges changes below
   BrepPieces out = collect_pieces(b, cut_edges);
   out.stats.layout_seconds = layout_seconds;

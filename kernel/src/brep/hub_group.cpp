@@ -267,14 +267,16 @@ HubGroup fuse_hub_group(const std::vector<GroupMember>& members, std::uint64_t s
   bounds.size = glm::length(hi - lo);
   std::tie(bounds.sampled, bounds.sigma) = sampled_volume(members, lo, hi, seed);
   progress.check();
-  // The first attempt (the exact Fuse of all at once) is the whole course of `progress`; the retries, rarely
-  // needed, take no share of it but stop at a cancel all the same.
-  progress.set_total(1);
+  // The first attempt (the exact Fuse of all at once) is the whole course of `progress`, in as many units as
+  // OpenCASCADE's progress has (one unit would move the bar only when the Fuse ends); the retries, rarely needed,
+  // take no share of it but stop at a cancel all the same.
+  constexpr std::int64_t kAttemptUnits = 1000;
+  progress.set_total(kAttemptUnits);
   std::string first_error;
   bool first = true;
   for (double fuzzy : kFuzzyRetries)
     for (bool one_by_one : {false, true}) {
-      Progress attempt(progress, first ? 1 : 0);
+      Progress attempt(progress, first ? kAttemptUnits : 0);
       first = false;
       try {
         HubGroup group = fuse_once(members, placed, bounds, fuzzy, one_by_one, what, attempt);
