@@ -1270,7 +1270,7 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
     tail.advance(kBeamUnits);
     build_beam(b, e);
   });
-  tail.finish();  // the beams that a group took in had their share counted
+  tail.finish();  // the share of the beams that a group took in (they have no faces of their own)
   b.tail = nullptr;
   progress.check();  // the last chance to stop: cut_edges changes below
   BrepPieces out = collect_pieces(b, cut_edges);
