@@ -18,7 +18,6 @@
 #include <BRepCheck_Analyzer.hxx>
 #include <STEPControl_Reader.hxx>
 #include <STEPControl_Writer.hxx>
-#include <TopExp_Explorer.hxx>
 #include <TopoDS_Compound.hxx>
 
 #include <algorithm>
@@ -41,18 +40,6 @@
 using namespace steady;
 
 namespace {
-
-int faces_of(const TopoDS_Shape& s) {
-  int n = 0;
-  for (TopExp_Explorer x(s, TopAbs_FACE); x.More(); x.Next()) ++n;
-  return n;
-}
-
-int solids_of(const TopoDS_Shape& s) {
-  int n = 0;
-  for (TopExp_Explorer x(s, TopAbs_SOLID); x.More(); x.Next()) ++n;
-  return n;
-}
 
 // What FreeCAD's Part.read does with a STEP file: OpenCASCADE's reader, every root transferred into one shape.
 TopoDS_Shape read_as_freecad_does(const std::string& path) {
@@ -93,15 +80,16 @@ void measure(const std::string& what, const FlatLattice& lattice, const TopoDS_S
     a.push_back(bench::seconds_of([&] { read_built = read_as_freecad_does(built); }));
     c.push_back(bench::seconds_of([&] { read_connected = read_as_freecad_does(connected); }));
   }
-  const int solids_a = solids_of(read_built), solids_c = solids_of(read_connected);
+  const long solids_a = solid_count(read_built), solids_c = solid_count(read_connected);
+  const long lattice_faces = face_count(trimmed.lattice), faces = lattice_faces + face_count(trimmed.skin);
   const bool valid = BRepCheck_Analyzer(read_connected).IsValid();
   std::sort(a.begin(), a.end());
   std::sort(c.begin(), c.end());
-  std::printf("%s: %zu beams, %d faces (lattice %d), trimmed in %.1f s; files %.1f / %.1f MB\n", what.c_str(),
-              lattice.beams.size(), faces_of(trimmed.lattice) + faces_of(trimmed.skin), faces_of(trimmed.lattice),
-              trim_seconds, std::filesystem::file_size(built) / 1e6, std::filesystem::file_size(connected) / 1e6);
+  std::printf("%s: %zu beams, %ld faces (lattice %ld), trimmed in %.1f s; files %.1f / %.1f MB\n", what.c_str(),
+              lattice.beams.size(), faces, lattice_faces, trim_seconds, std::filesystem::file_size(built) / 1e6,
+              std::filesystem::file_size(connected) / 1e6);
   std::printf("  read back (median of 3): faces as built %.1f s, in connected order %.1f s: %.2fx faster; "
-              "solids %d / %d, connected file's shape %s\n",
+              "solids %ld / %ld, connected file's shape %s\n",
               a[1], c[1], a[1] / c[1], solids_a, solids_c, valid ? "valid" : "INVALID");
   std::filesystem::remove_all(dir);
 }
