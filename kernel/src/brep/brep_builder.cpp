@@ -613,6 +613,13 @@ std::vector<std::int64_t> short_whole_beams(const PieceBuild& b) {
   return out;
 }
 
+// Per ball, the index of its hub (-1 for a ball not built).
+std::vector<std::int64_t> hub_of_balls(const PieceBuild& b) {
+  std::vector<std::int64_t> hub_of(b.f.ball_count(), -1);
+  for (std::size_t h = 0; h < b.hubs.size(); ++h) hub_of[b.hubs[h].ball] = static_cast<std::int64_t>(h);
+  return hub_of;
+}
+
 // Hubs that may be built in a group: those meeting foreign elements and those at short whole beams. The groups
 // of both kinds hold no others, and no hub is in two.
 std::int64_t hubs_that_may_group(const PieceBuild& b) {
@@ -621,8 +628,7 @@ std::int64_t hubs_that_may_group(const PieceBuild& b) {
     for (const EndCircle& ec : b.beams[e].end)
       if (ec.hub >= 0) may[ec.hub] = 1;
   if (b.selection.foreign != nullptr) {
-    std::vector<std::int64_t> hub_of(b.f.ball_count(), -1);
-    for (std::size_t h = 0; h < b.hubs.size(); ++h) hub_of[b.hubs[h].ball] = static_cast<std::int64_t>(h);
+    const std::vector<std::int64_t> hub_of = hub_of_balls(b);
     for (const auto& [x, y] : b.selection.foreign->joined)
       for (std::int64_t ball : {x, y})
         if (hub_of[ball] >= 0) may[hub_of[ball]] = 1;
@@ -827,8 +833,7 @@ void group_foreign_contacts(PieceBuild& b) {
                               contacts->description + "), and " + why +
                               ": thin the beams or nodes, or space the nodes further apart");
   };
-  std::vector<std::int64_t> hub_of(f.ball_count(), -1);
-  for (std::size_t h = 0; h < b.hubs.size(); ++h) hub_of[b.hubs[h].ball] = static_cast<std::int64_t>(h);
+  const std::vector<std::int64_t> hub_of = hub_of_balls(b);
   DisjointSets sets(b.hubs.size());
   std::vector<char> in_contact(b.hubs.size(), 0);
   for (const auto& [x, y] : contacts->joined) {
