@@ -30,6 +30,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <mutex>
 #include <sstream>
 
@@ -37,6 +38,7 @@
 #include "brep/connected_face_order.hpp"
 #include "brep/occ_progress.hpp"
 #include "brep/step_reproducible.hpp"
+#include "brep/step_shared_geometry.hpp"
 #include "steady/core/errors.hpp"
 
 namespace steady {
@@ -122,15 +124,12 @@ void check_step_name(const std::string& name, const char* field) {
                           std::to_string(name.size()) + ")");
 }
 
-void write_step_assembly(const std::string& path, const std::vector<StepPart>& parts, const std::string& assembly_name,
-                         Progress& progress) {
-  if (parts.empty()) fail_input("parts", "there is nothing to write");
-  check_output_path(path);
-  check_step_name(assembly_name, "assembly_name");
-  for (const StepPart& p : parts) check_step_name(p.name, "parts");
-  // Units: the document 5, the translation to STEP entities 45 (OpenCASCADE reports it), the file 50 (it cannot
-  // report: the fraction waits at 0.5 while it is written).
-  progress.set_total(100);
+namespace {
+
+// OpenCASCADE's translation of the parts into one assembly, written to `partial`; false when either fails. The
+// document and the writer's model are gone when it returns (a 100,000-beam part's model takes gigabytes).
+bool write_occ_step(const std::string& partial, const std::vector<StepPart>& parts, const std::string& assembly_name,
+                    Progress& progress) {
   std::lock_guard<std::mutex> lock(xcaf_mutex());
   Handle(TDocStd_Document) doc = new_document();
   const DocumentCloser closer{doc};
@@ -139,7 +138,6 @@ void write_step_assembly(const std::string& path, const std::vector<StepPart>& p
   const TDF_Label assembly = shapes->NewShape();
   TDataStd_Name::Set(assembly, assembly_name.c_str());
   for (const StepPart& p : parts) {
-    if (p.shape.IsNull()) fail_input("parts", "part '" + p.name + "' has no shape");
     // Faces in connected order: readers built on OpenCASCADE then orient each shell in linear time (see there).
     const TDF_Label label = shapes->AddShape(with_faces_in_connected_order(p.shape), Standard_False);
     TDataStd_Name::Set(label, p.name.c_str());
@@ -164,17 +162,57 @@ void write_step_assembly(const std::string& path, const std::vector<StepPart>& p
   // B-spline 7e-5 away from the circle, 700 times the edge's tolerance, and volumes come back 3e-6 to 6e-6 off
   // (docs/brep.md, section 5). Set here, so that a changed default of the process cannot drop them.
   const ScopedStaticInt with_pcurves("write.surfacecurve.mode", 1);
-  bool ok = false;
   {
     Progress part(progress, 45);
     OccProgress occ(part);
-    ok = writer.Transfer(doc, STEPControl_AsIs, nullptr, occ.range());
+    if (!writer.Transfer(doc, STEPControl_AsIs, nullptr, occ.range())) return false;
     occ.finish();  // the last chance to stop: the file is written below
   }
-  if (ok) make_reproducible(writer.ChangeWriter().Model());
+  make_reproducible(writer.ChangeWriter().Model());
+  return writer.Write(partial.c_str()) == IFSelect_RetDone;
+}
+
+// Rewrites the file at `path` with its equal geometry shared (step_shared_geometry.hpp).
+bool share_geometry_in_file(const std::string& path) {
+  std::string text;
+  {
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    if (!in) return false;
+    text.resize(static_cast<std::size_t>(in.tellg()));
+    in.seekg(0);
+    if (!in.read(text.data(), static_cast<std::streamsize>(text.size()))) return false;
+  }
+  text = share_equal_geometry(text);
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(text.data(), static_cast<std::streamsize>(text.size()));
+  out.close();
+  return static_cast<bool>(out);
+}
+
+}  // namespace
+
+void write_step_assembly(const std::string& path, const std::vector<StepPart>& parts, const std::string& assembly_name,
+                         Progress& progress) {
+  if (parts.empty()) fail_input("parts", "there is nothing to write");
+  check_output_path(path);
+  check_step_name(assembly_name, "assembly_name");
+  for (const StepPart& p : parts) {
+    check_step_name(p.name, "parts");
+    if (p.shape.IsNull()) fail_input("parts", "part '" + p.name + "' has no shape");
+  }
+  // Units: the document 5, the translation to STEP entities 45 (OpenCASCADE reports it), the file 50 (it cannot
+  // report: the fraction waits at 0.5 while it is written and its equal geometry shared).
+  progress.set_total(100);
   // Written beside the target and renamed, so that a failed write leaves no partial file under the name.
   const std::string partial = path + ".partial";
-  ok = ok && writer.Write(partial.c_str()) == IFSelect_RetDone && std::rename(partial.c_str(), path.c_str()) == 0;
+  bool ok = false;
+  try {
+    ok = write_occ_step(partial, parts, assembly_name, progress) && share_geometry_in_file(partial) &&
+         std::rename(partial.c_str(), path.c_str()) == 0;
+  } catch (...) {  // cancelled, out of memory: nothing left behind
+    std::remove(partial.c_str());
+    throw;
+  }
   if (!ok) {
     std::remove(partial.c_str());
     fail_input("path", "cannot write a STEP file to '" + path + "'");

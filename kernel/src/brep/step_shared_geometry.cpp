@@ -1,0 +1,320 @@
+#include "brep/step_shared_geometry.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string_view>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+namespace steady {
+
+namespace {
+
+using Keywords = std::unordered_set<std::string_view>;
+
+// Geometric values: two equal ones are one value wherever they are written. Surfaces are not among them (a face
+// keeps its own), nor anything with an identity of its own (topology, products, representations, styles).
+const Keywords& value_keywords() {
+  static const Keywords k = {
+      "CARTESIAN_POINT", "DIRECTION", "VECTOR", "AXIS1_PLACEMENT", "AXIS2_PLACEMENT_2D", "AXIS2_PLACEMENT_3D", "LINE",
+      "CIRCLE", "ELLIPSE", "HYPERBOLA", "PARABOLA", "B_SPLINE_CURVE_WITH_KNOTS", "BEZIER_CURVE", "TRIMMED_CURVE",
+      "PCURVE", "DEFINITIONAL_REPRESENTATION", "SURFACE_CURVE", "SEAM_CURVE",
+      // records of the complex entities that are values: rational B-spline curves, 2D parameter contexts
+      "BOUNDED_CURVE", "B_SPLINE_CURVE", "RATIONAL_B_SPLINE_CURVE", "CURVE", "GEOMETRIC_REPRESENTATION_ITEM",
+      "REPRESENTATION_ITEM", "GEOMETRIC_REPRESENTATION_CONTEXT", "PARAMETRIC_REPRESENTATION_CONTEXT",
+      "REPRESENTATION_CONTEXT"};
+  return k;
+}
+
+// What may refer to a shared value besides other values: topology and surfaces. A value that anything else refers
+// to (an assembly's placements, listed in a shape representation's set of items) keeps its own entity.
+const Keywords& geometry_keywords() {
+  static const Keywords k = {
+      "VERTEX_POINT", "EDGE_CURVE", "ORIENTED_EDGE", "EDGE_LOOP", "VERTEX_LOOP", "FACE_BOUND", "FACE_OUTER_BOUND",
+      "ADVANCED_FACE", "FACE_SURFACE", "PLANE", "CYLINDRICAL_SURFACE", "CONICAL_SURFACE", "SPHERICAL_SURFACE",
+      "TOROIDAL_SURFACE", "DEGENERATE_TOROIDAL_SURFACE", "B_SPLINE_SURFACE_WITH_KNOTS", "SURFACE_OF_LINEAR_EXTRUSION",
+      "SURFACE_OF_REVOLUTION", "OFFSET_SURFACE", "RECTANGULAR_TRIMMED_SURFACE", "BOUNDED_SURFACE", "B_SPLINE_SURFACE",
+      "RATIONAL_B_SPLINE_SURFACE", "SURFACE"};
+  return k;
+}
+
+bool is_word_char(char c) {
+  return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
+}
+bool is_letter(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || c == '_' || c == '!'; }
+bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
+
+[[noreturn]] void malformed(const std::string& what) {
+  throw std::runtime_error("STEP sharing: " + what + " (not a file as OpenCASCADE's writer gives it)");
+}
+
+struct Record {
+  long id = 0;
+  std::size_t begin = 0, size = 0;  // the record's compacted text in Records::text
+  std::vector<long> refs;           // the entities it refers to, in order
+  bool value = false;               // a geometric value (see value_keywords)
+  bool may_share = false;           // referred to by geometry and topology only
+  long canonical = -1;              // the id of the equal value written for it (its own id when kept)
+  bool visiting = false;
+};
+
+struct Records {
+  std::string text;  // every record's compacted text, one after another
+  std::vector<Record> list;
+  std::vector<int> index_of_id;  // record index of an entity id, -1 where none
+  std::string_view body(const Record& r) const { return std::string_view(text).substr(r.begin, r.size); }
+  int index(long id) const {
+    if (id < 0 || id >= static_cast<long>(index_of_id.size()) || index_of_id[id] < 0)
+      malformed("a reference to #" + std::to_string(id) + ", which the file does not define");
+    return index_of_id[id];
+  }
+};
+
+// The keywords of a record: its type, or the types of a complex entity's records.
+std::vector<std::string_view> keywords_of(std::string_view body) {
+  std::vector<std::string_view> out;
+  if (body.empty()) return out;
+  if (body[0] != '(') {
+    out.push_back(body.substr(0, body.find('(')));
+    return out;
+  }
+  int depth = 0;
+  bool in_string = false;
+  for (std::size_t i = 0; i < body.size(); ++i) {
+    const char c = body[i];
+    if (in_string) {
+      if (c == '\'') in_string = false;  // '' inside a string reads as two quotes: leave and enter again
+    } else if (c == '\'') {
+      in_string = true;
+    } else if (c == '(') {
+      ++depth;
+    } else if (c == ')') {
+      --depth;
+    } else if (depth == 1 && is_letter(c) && (i == 0 || !is_word_char(body[i - 1]))) {
+      std::size_t j = i;
+      while (j < body.size() && is_word_char(body[j])) ++j;
+      out.push_back(body.substr(i, j - i));
+      i = j - 1;
+    }
+  }
+  return out;
+}
+
+bool all_in(const std::vector<std::string_view>& words, const Keywords& a, const Keywords* b = nullptr) {
+  if (words.empty()) return false;
+  for (std::string_view w : words)
+    if (!a.count(w) && !(b && b->count(w))) return false;
+  return true;
+}
+
+// Copies one record's parameters from text[at] up to its ';' into `records.text` without whitespace outside strings
+// (one space kept where a keyword follows a word or a closing parenthesis: the records of a complex entity) and
+// collects its references. Returns the position after the ';'.
+std::size_t read_record_body(const std::string& text, std::size_t at, Records& records, Record& r) {
+  std::string& out = records.text;
+  r.begin = out.size();
+  bool space = false;
+  while (true) {
+    if (at >= text.size()) malformed("a record without its ';'");
+    const char c = text[at];
+    if (c == '\'') {  // a string, copied as it is ('' is a quote inside it)
+      const std::size_t end = text.find('\'', at + 1);
+      if (end == std::string::npos) malformed("a string without its end");
+      out.append(text, at, end + 1 - at);
+      at = end + 1;
+      space = false;
+      continue;
+    }
+    if (is_space(c)) {
+      space = true;
+      ++at;
+      continue;
+    }
+    if (c == '/' && at + 1 < text.size() && text[at + 1] == '*') {  // a comment reads as a space
+      const std::size_t end = text.find("*/", at + 2);
+      if (end == std::string::npos) malformed("a comment without its end");
+      at = end + 2;
+      space = true;
+      continue;
+    }
+    if (c == ';') break;
+    if (space && out.size() > r.begin && is_letter(c) && (is_word_char(out.back()) || out.back() == ')')) out += ' ';
+    space = false;
+    if (c == '#') {
+      std::size_t j = at + 1;
+      long id = 0;
+      while (j < text.size() && text[j] >= '0' && text[j] <= '9') id = id * 10 + (text[j++] - '0');
+      if (j == at + 1) malformed("a '#' without a number");
+      r.refs.push_back(id);
+      out.append(text, at, j - at);
+      at = j;
+      continue;
+    }
+    out += c;
+    ++at;
+  }
+  r.size = out.size() - r.begin;
+  return at + 1;
+}
+
+std::size_t skip_space(const std::string& text, std::size_t at) {
+  while (at < text.size() && is_space(text[at])) ++at;
+  return at;
+}
+
+// The position just after the header's "DATA;" (outside strings).
+std::size_t data_section_start(const std::string& text) {
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '\'') {
+      const std::size_t end = text.find('\'', i + 1);
+      if (end == std::string::npos) break;
+      i = end;
+      continue;
+    }
+    if (text.compare(i, 4, "DATA") == 0 && (i == 0 || !is_word_char(text[i - 1]))) {
+      const std::size_t j = skip_space(text, i + 4);
+      if (j < text.size() && text[j] == ';') return j + 1;
+    }
+  }
+  malformed("no DATA section");
+}
+
+Records read_records(const std::string& text, std::size_t at, std::size_t* end_of_data) {
+  Records records;
+  records.text.reserve(text.size() - at);
+  long max_id = 0;
+  while (true) {
+    at = skip_space(text, at);
+    if (text.compare(at, 6, "ENDSEC") == 0) break;
+    if (at >= text.size() || text[at] != '#') malformed("a DATA section that is not a list of '#n=...;' records");
+    Record r;
+    std::size_t j = at + 1;
+    while (j < text.size() && text[j] >= '0' && text[j] <= '9') r.id = r.id * 10 + (text[j++] - '0');
+    j = skip_space(text, j);
+    if (j == at + 1 || j >= text.size() || text[j] != '=') malformed("a record without '#n ='");
+    at = read_record_body(text, j + 1, records, r);
+    max_id = std::max(max_id, r.id);
+    records.list.push_back(std::move(r));
+  }
+  *end_of_data = at;
+  records.index_of_id.assign(max_id + 1, -1);
+  for (std::size_t i = 0; i < records.list.size(); ++i) {
+    int& slot = records.index_of_id[records.list[i].id];
+    if (slot >= 0) malformed("#" + std::to_string(records.list[i].id) + " defined twice");
+    slot = static_cast<int>(i);
+  }
+  return records;
+}
+
+// Marks the values, and among them those that only geometry and topology refer to.
+void classify(Records& records) {
+  std::vector<char> geometric(records.list.size(), 0);
+  for (std::size_t i = 0; i < records.list.size(); ++i) {
+    Record& r = records.list[i];
+    const std::vector<std::string_view> words = keywords_of(records.body(r));
+    r.value = all_in(words, value_keywords());
+    geometric[i] = r.value || all_in(words, value_keywords(), &geometry_keywords());
+    r.may_share = r.value;
+  }
+  for (std::size_t i = 0; i < records.list.size(); ++i)
+    if (!geometric[i])
+      for (long id : records.list[i].refs) records.list[records.index(id)].may_share = false;
+}
+
+// The id of the entity written for record i: a value's first equal one (equal text once the values it refers to
+// are replaced by theirs), any other record itself. Value chains are short (a pcurve's representation, curve,
+// points), so the recursion is shallow; a cycle, which geometry never has, keeps its records.
+long canonical(Records& records, std::unordered_map<std::string, long>& firsts, int i) {
+  Record& r = records.list[i];
+  if (r.canonical >= 0) return r.canonical;
+  if (!r.may_share || r.visiting) return r.id;
+  r.visiting = true;
+  const std::string_view body = records.body(r);
+  std::string key;
+  key.reserve(body.size() + 8);
+  std::size_t ref = 0;
+  for (std::size_t k = 0; k < body.size(); ++k) {
+    key += body[k];
+    if (body[k] == '\'') {  // strings are copied whole: a '#' inside one is not a reference
+      const std::size_t end = body.find('\'', k + 1);
+      key.append(body, k + 1, end - k);
+      k = end;
+    } else if (body[k] == '#') {
+      key += std::to_string(canonical(records, firsts, records.index(r.refs[ref++])));
+      while (k + 1 < body.size() && body[k + 1] >= '0' && body[k + 1] <= '9') ++k;
+    }
+  }
+  r.visiting = false;
+  r.canonical = firsts.emplace(std::move(key), r.id).first->second;
+  return r.canonical;
+}
+
+// Writes record r with its references renumbered, wrapping after a comma past 80 characters.
+void write_record(const Records& records, const Record& r, const std::vector<long>& new_id,
+                  const std::vector<long>& canonical_of, std::string& out) {
+  std::size_t last_break = out.size();
+  out += '#';
+  out += std::to_string(new_id[records.index(r.id)]);
+  out += '=';
+  const std::string_view body = records.body(r);
+  std::size_t ref = 0;
+  for (std::size_t k = 0; k < body.size(); ++k) {
+    const char c = body[k];
+    if (c == '\'') {
+      const std::size_t end = body.find('\'', k + 1);
+      out.append(body, k, end + 1 - k);
+      k = end;
+      continue;
+    }
+    if (c == '#') {
+      out += '#';
+      out += std::to_string(new_id[records.index(canonical_of[records.index(r.refs[ref++])])]);
+      while (k + 1 < body.size() && body[k + 1] >= '0' && body[k + 1] <= '9') ++k;
+      continue;
+    }
+    out += c;
+    if (c == ',' && out.size() - last_break > 80) {
+      out += '\n';
+      last_break = out.size();
+    }
+  }
+  out += ";\n";
+}
+
+}  // namespace
+
+std::string share_equal_geometry(const std::string& text, StepSharing* sharing) {
+  const std::size_t data = data_section_start(text);
+  std::size_t end_of_data = 0;
+  Records records = read_records(text, data, &end_of_data);
+  const std::string_view tail = std::string_view(text).substr(end_of_data);
+  if (tail.find('#') != std::string_view::npos) malformed("records after the DATA section");
+  classify(records);
+  std::unordered_map<std::string, long> firsts;
+  std::vector<long> canonical_of(records.list.size());
+  for (std::size_t i = 0; i < records.list.size(); ++i)
+    canonical_of[i] = canonical(records, firsts, static_cast<int>(i));
+  firsts.clear();
+  // The entities kept (those written for themselves) numbered from 1 in their order.
+  std::vector<long> new_id(records.list.size(), 0);
+  long next = 0;
+  for (std::size_t i = 0; i < records.list.size(); ++i)
+    if (canonical_of[i] == records.list[i].id) new_id[i] = ++next;
+  std::string out;
+  out.reserve(data + records.text.size() + records.list.size() * 4 + tail.size());
+  out.append(text, 0, data);
+  out += '\n';
+  for (std::size_t i = 0; i < records.list.size(); ++i)
+    if (new_id[i]) write_record(records, records.list[i], new_id, canonical_of, out);
+  out.append(tail);
+  if (sharing) {
+    sharing->entities_before = records.list.size();
+    sharing->entities_after = static_cast<std::size_t>(next);
+    sharing->bytes_before = text.size();
+    sharing->bytes_after = out.size();
+  }
+  return out;
+}
+
+}  // namespace steady
