@@ -1,7 +1,9 @@
-// How long OpenCASCADE's STEP reader (the one FreeCAD and gmsh use) takes to read a lattice part back, with the
-// part's faces in the order they were built against the order the writer now puts them in (each face sharing an
-// edge with one before it, brep/connected_face_order.hpp). The reader orients every shell by scanning its remaining
-// faces from the first after each face it adds: quadratic in the faces unless they come connected.
+// A lattice part's STEP file as OpenCASCADE's writer gives it against the kernel's writer: its size and write time,
+// and how long OpenCASCADE's STEP reader (the one FreeCAD and gmsh use) takes to read it back. The kernel's writer
+// puts each shell's faces in connected order (each sharing an edge with one before it,
+// brep/connected_face_order.hpp; the reader orients every shell by scanning its remaining faces from the first after
+// each face it adds: quadratic in the faces unless they come connected) and writes equal geometry once
+// (brep/step_shared_geometry.hpp).
 //
 // Default: issue 14's swirled lattice (bench_brep's part 2 and bench_step_with_skin.py: one node of radius 0.25,
 // three beams, U a slight swirl) at 18 x 18 x 12 nodes (10,908 beams) in a cylinder 3 degrees off its beams with a
@@ -29,6 +31,7 @@
 #include <unistd.h>
 
 #include "bench_common.hpp"
+#include "brep/step_shared_geometry.hpp"
 #include "sample_lattices.hpp"
 #include "steady/brep/brep_io.hpp"
 #include "steady/brep/step_assembly.hpp"
@@ -72,8 +75,10 @@ void measure(const std::string& what, const FlatLattice& lattice, const TopoDS_S
                           std::to_string(::getpid());
   std::filesystem::create_directories(dir);
   const std::string built = dir + "/as_built.step", connected = dir + "/connected.step";
-  write_as_built(built, trimmed.lattice, trimmed.skin);
-  write_step_assembly(connected, {{"Lattice", trimmed.lattice}, {"Skin", trimmed.skin}});
+  const double write_built =
+      bench::seconds_of([&] { write_as_built(built, trimmed.lattice, trimmed.skin); });
+  const double write_ours = bench::seconds_of(
+      [&] { write_step_assembly(connected, {{"Lattice", trimmed.lattice}, {"Skin", trimmed.skin}}); });
   std::vector<double> a, c;
   TopoDS_Shape read_built, read_connected;
   for (int run = 0; run < 3; ++run) {
@@ -85,10 +90,19 @@ void measure(const std::string& what, const FlatLattice& lattice, const TopoDS_S
   const bool valid = BRepCheck_Analyzer(read_connected).IsValid();
   std::sort(a.begin(), a.end());
   std::sort(c.begin(), c.end());
-  std::printf("%s: %zu beams, %ld faces (lattice %ld), trimmed in %.1f s; files %.1f / %.1f MB\n", what.c_str(),
-              lattice.beams.size(), faces, lattice_faces, trim_seconds, std::filesystem::file_size(built) / 1e6,
-              std::filesystem::file_size(connected) / 1e6);
-  std::printf("  read back (median of 3): faces as built %.1f s, in connected order %.1f s: %.2fx faster; "
+  // The sharing pass alone, on OpenCASCADE's file (ours runs it on its XCAF writer's file, with names and colours).
+  const std::string built_text = test::file_bytes(built);
+  const double share_seconds = bench::seconds_of([&] { (void)share_equal_geometry(built_text); });
+  const double beams = static_cast<double>(lattice.beams.size());
+  const double size_built = static_cast<double>(std::filesystem::file_size(built));
+  const double size_ours = static_cast<double>(std::filesystem::file_size(connected));
+  std::printf("%s: %zu beams, %ld faces (lattice %ld), trimmed in %.1f s\n", what.c_str(), lattice.beams.size(), faces,
+              lattice_faces, trim_seconds);
+  std::printf("  file: OpenCASCADE's writer %.1f MB (%.1f KB per beam) in %.1f s, ours %.1f MB (%.1f KB per beam) in "
+              "%.1f s: %.2fx smaller (the sharing pass alone %.2f s)\n",
+              size_built / 1e6, size_built / 1e3 / beams, write_built, size_ours / 1e6, size_ours / 1e3 / beams,
+              write_ours, size_built / size_ours, share_seconds);
+  std::printf("  read back (median of 3): OpenCASCADE's file %.1f s, ours %.1f s: %.2fx faster; "
               "solids %ld / %ld, connected file's shape %s\n",
               a[1], c[1], a[1] / c[1], solids_a, solids_c, valid ? "valid" : "INVALID");
   std::filesystem::remove_all(dir);
