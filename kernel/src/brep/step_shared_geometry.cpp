@@ -51,8 +51,8 @@ bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; 
 
 struct Record {
   long id = 0;
-  std::size_t begin = 0, size = 0;  // the record's compacted text in Records::text
-  std::vector<long> refs;           // the entities it refers to, in order
+  std::size_t begin = 0, size = 0;       // the record's compacted text in Records::text
+  std::size_t refs_begin = 0, refs = 0;  // the entities it refers to, in order, in Records::refs
   bool value = false;               // a geometric value (see value_keywords)
   bool may_share = false;           // referred to by geometry and topology only
   long canonical = -1;              // the id of the equal value written for it (its own id when kept)
@@ -60,10 +60,12 @@ struct Record {
 };
 
 struct Records {
-  std::string text;  // every record's compacted text, one after another
+  std::string text;        // every record's compacted text, one after another
+  std::vector<long> refs;  // every record's references, one after another
   std::vector<Record> list;
   std::vector<int> index_of_id;  // record index of an entity id, -1 where none
   std::string_view body(const Record& r) const { return std::string_view(text).substr(r.begin, r.size); }
+  long ref(const Record& r, std::size_t k) const { return refs[r.refs_begin + k]; }
   int index(long id) const {
     if (id < 0 || id >= static_cast<long>(index_of_id.size()) || index_of_id[id] < 0)
       malformed("a reference to #" + std::to_string(id) + ", which the file does not define");
@@ -114,6 +116,7 @@ bool all_in(const std::vector<std::string_view>& words, const Keywords& a, const
 std::size_t read_record_body(const std::string& text, std::size_t at, Records& records, Record& r) {
   std::string& out = records.text;
   r.begin = out.size();
+  r.refs_begin = records.refs.size();
   bool space = false;
   while (true) {
     if (at >= text.size()) malformed("a record without its ';'");
@@ -146,7 +149,8 @@ std::size_t read_record_body(const std::string& text, std::size_t at, Records& r
       long id = 0;
       while (j < text.size() && text[j] >= '0' && text[j] <= '9') id = id * 10 + (text[j++] - '0');
       if (j == at + 1) malformed("a '#' without a number");
-      r.refs.push_back(id);
+      records.refs.push_back(id);
+      ++r.refs;
       out.append(text, at, j - at);
       at = j;
       continue;
@@ -219,7 +223,8 @@ void classify(Records& records) {
   }
   for (std::size_t i = 0; i < records.list.size(); ++i)
     if (!geometric[i])
-      for (long id : records.list[i].refs) records.list[records.index(id)].may_share = false;
+      for (std::size_t k = 0; k < records.list[i].refs; ++k)
+        records.list[records.index(records.ref(records.list[i], k))].may_share = false;
 }
 
 // The id of the entity written for record i: a value's first equal one (equal text once the values it refers to
@@ -241,7 +246,7 @@ long canonical(Records& records, std::unordered_map<std::string, long>& firsts, 
       key.append(body, k + 1, end - k);
       k = end;
     } else if (body[k] == '#') {
-      key += std::to_string(canonical(records, firsts, records.index(r.refs[ref++])));
+      key += std::to_string(canonical(records, firsts, records.index(records.ref(r, ref++))));
       while (k + 1 < body.size() && body[k + 1] >= '0' && body[k + 1] <= '9') ++k;
     }
   }
@@ -269,7 +274,7 @@ void write_record(const Records& records, const Record& r, const std::vector<lon
     }
     if (c == '#') {
       out += '#';
-      out += std::to_string(new_id[records.index(canonical_of[records.index(r.refs[ref++])])]);
+      out += std::to_string(new_id[records.index(canonical_of[records.index(records.ref(r, ref++))])]);
       while (k + 1 < body.size() && body[k + 1] >= '0' && body[k + 1] <= '9') ++k;
       continue;
     }
