@@ -182,7 +182,7 @@ bool share_geometry_in_file(const std::string& path) {
     in.seekg(0);
     if (!in.read(text.data(), static_cast<std::streamsize>(text.size()))) return false;
   }
-  text = share_equal_geometry(text);
+  text = share_equal_geometry(std::move(text));
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out.write(text.data(), static_cast<std::streamsize>(text.size()));
   out.close();

@@ -24,6 +24,6 @@ struct StepSharing {
 // one for one. A value entity that something other than geometry or topology refers to (the placements of an
 // assembly's components) is kept too. Throws std::runtime_error when `text` is not the DATA section's
 // `#n=...;` records this writer reads (OpenCASCADE's writer always gives them).
-std::string share_equal_geometry(const std::string& text, StepSharing* sharing = nullptr);
+std::string share_equal_geometry(std::string text, StepSharing* sharing = nullptr);
 
 }  // namespace steady
