@@ -233,7 +233,10 @@ TEST(StepSharedGeometry, TextThatIsNotAWritersDataSectionIsAnError) {
                                  head + "#1=VECTOR('',#7,1.);\nENDSEC;\n",                   // #7 undefined
                                  head + "#1=LINE('',#1,#1);\n#1=LINE('',#1,#1);\nENDSEC;\n",  // #1 twice
                                  head + "#1=CARTESIAN_POINT('x,(0.,0.,0.));\nENDSEC;\n",     // open string
-                                 head + "X=1;\nENDSEC;\n"})
+                                 head + "X=1;\nENDSEC;\n",
+                                 head + "#1=VECTOR('',#,1.);\nENDSEC;\n",                      // '#' alone
+                                 head + "#1=VECTOR('',#1234567890123456789,1.);\nENDSEC;\n",  // 19 digits
+                                 head + "#99999999=CARTESIAN_POINT('',(0.,0.));\nENDSEC;\n"})  // far numbers
     EXPECT_THROW(share_equal_geometry(bad), std::runtime_error) << bad;
 }
 

@@ -54,13 +54,23 @@ bool is_plain(char c) { return c != '\'' && !is_space(c) && c != '/' && c != ';'
   throw std::runtime_error("STEP sharing: " + what + " (not a file as OpenCASCADE's writer gives it)");
 }
 
+// The entity number whose digits start at text[at] (after its '#'); `at` moves past them.
+long entity_number(const std::string& text, std::size_t& at) {
+  const std::size_t start = at;
+  long id = 0;
+  while (at < text.size() && text[at] >= '0' && text[at] <= '9' && at - start < 15) id = id * 10 + (text[at++] - '0');
+  if (at == start || (at < text.size() && text[at] >= '0' && text[at] <= '9'))
+    malformed("an entity number of no digits or more than 15");
+  return id;
+}
+
 struct Record {
   long id = 0;
   std::size_t begin = 0, size = 0;       // the record's compacted text in Records::text
   std::size_t refs_begin = 0, refs = 0;  // the entities it refers to, in order, in Records::refs
-  bool value = false;               // a geometric value (see value_keywords)
-  bool may_share = false;           // referred to by geometry and topology only
-  long canonical = -1;              // the id of the equal value written for it (its own id when kept)
+  bool value = false;                    // a geometric value (see value_keywords)
+  bool may_share = false;                // referred to by geometry and topology only
+  long canonical = -1;                   // the id of the equal value written for it (its own id when kept)
   bool visiting = false;
 };
 
@@ -158,10 +168,7 @@ std::size_t read_record_body(Records& records, std::size_t at, std::size_t& writ
     space = false;
     if (c == '#') {
       std::size_t j = at + 1;
-      long id = 0;
-      while (j < text.size() && text[j] >= '0' && text[j] <= '9') id = id * 10 + (text[j++] - '0');
-      if (j == at + 1) malformed("a '#' without a number");
-      records.refs.push_back(id);
+      records.refs.push_back(entity_number(text, j));
       ++r.refs;
       emit(at, j - at);
       at = j;
@@ -217,14 +224,16 @@ Records read_records(std::string text, std::size_t at, std::size_t* end_of_data)
       malformed("a DATA section that is not a list of '#n=...;' records");
     Record r;
     std::size_t j = at + 1;
-    while (j < text_ref.size() && text_ref[j] >= '0' && text_ref[j] <= '9') r.id = r.id * 10 + (text_ref[j++] - '0');
+    r.id = entity_number(text_ref, j);
     j = skip_space(text_ref, j);
-    if (j == at + 1 || j >= text_ref.size() || text_ref[j] != '=') malformed("a record without '#n ='");
+    if (j >= text_ref.size() || text_ref[j] != '=') malformed("a record without '#n ='");
     at = read_record_body(records, j + 1, write, r);
     max_id = std::max(max_id, r.id);
     records.list.push_back(std::move(r));
   }
   *end_of_data = at;
+  // Writers number entities from 1 on; numbers far beyond the count would only make the table below huge.
+  if (max_id > 16 * static_cast<long>(records.list.size()) + 1024) malformed("entity numbers far beyond their count");
   records.index_of_id.assign(max_id + 1, -1);
   for (std::size_t i = 0; i < records.list.size(); ++i) {
     int& slot = records.index_of_id[records.list[i].id];
