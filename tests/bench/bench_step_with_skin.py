@@ -2,9 +2,10 @@
 unequal end radii, U a slight swirl) trimmed into a cylinder 3 degrees off its beams with a skin of 0.4, written
 as a STEP assembly and read back by OpenCASCADE's reader (in a reader process). Prints the beams, the write time,
 the file's size per beam, the peak memory, the read time, and each part's validity, solids and volume.
-Default: 12 x 12 x 8 nodes, 3,120 beams (19 s to write, 10.0 KB per beam, 24 s to read); --long: 101,343 beams
-(issue 14's 100,000-beam target: written in 2,901 s, 1,137.5 MB, read back with the parts' checks in
-2,553 s, on a machine shared with the test suite; peak 10.3 GB).
+Default: 12 x 12 x 8 nodes, 3,120 beams (23 s to write, 3.1 KB per beam, 19 s to read); --long: 101,343 beams
+(issue 14's 100,000-beam target: written in 1,674 s, 237.5 MB, 2.3 KB per beam, read back with the parts' checks
+in 773 s, on a machine shared with other jobs; peak 10.0 GB. Before equal geometry was shared: 1,137.5 MB, read
+back in 2,553 s, to the same volumes).
 Usage: bench_step_with_skin.py [--long]"""
 import os
 import resource
