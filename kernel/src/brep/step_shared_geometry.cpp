@@ -68,8 +68,7 @@ struct Record {
   long id = 0;
   std::size_t begin = 0, size = 0;       // the record's compacted text in Records::text
   std::size_t refs_begin = 0, refs = 0;  // the entities it refers to, in order, in Records::refs
-  bool value = false;                    // a geometric value (see value_keywords)
-  bool may_share = false;                // referred to by geometry and topology only
+  bool may_share = false;                // a geometric value that only geometry and topology refer to
   long canonical = -1;                   // the id of the equal value written for it (its own id when kept)
   bool visiting = false;
 };
@@ -249,9 +248,9 @@ void classify(Records& records) {
   for (std::size_t i = 0; i < records.list.size(); ++i) {
     Record& r = records.list[i];
     const std::vector<std::string_view> words = keywords_of(records.body(r));
-    r.value = all_in(words, value_keywords());
-    geometric[i] = r.value || all_in(words, value_keywords(), &geometry_keywords());
-    r.may_share = r.value;
+    const bool value = all_in(words, value_keywords());
+    geometric[i] = value || all_in(words, value_keywords(), &geometry_keywords());
+    r.may_share = value;
   }
   for (std::size_t i = 0; i < records.list.size(); ++i)
     if (!geometric[i])
