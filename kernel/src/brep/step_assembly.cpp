@@ -172,21 +172,13 @@ bool write_occ_step(const std::string& partial, const std::vector<StepPart>& par
   return writer.Write(partial.c_str()) == IFSelect_RetDone;
 }
 
-// Rewrites the file at `path` with its equal geometry shared (step_shared_geometry.hpp).
-bool share_geometry_in_file(const std::string& path) {
-  std::string text;
-  {
-    std::ifstream in(path, std::ios::binary | std::ios::ate);
-    if (!in) return false;
-    text.resize(static_cast<std::size_t>(in.tellg()));
-    in.seekg(0);
-    if (!in.read(text.data(), static_cast<std::streamsize>(text.size()))) return false;
-  }
-  text = share_equal_geometry(std::move(text));
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(text.data(), static_cast<std::streamsize>(text.size()));
-  out.close();
-  return static_cast<bool>(out);
+// The whole of the file at `path` in `text`; false when it cannot be read.
+bool read_whole_file(const std::string& path, std::string& text) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) return false;
+  text.resize(static_cast<std::size_t>(in.tellg()));
+  in.seekg(0);
+  return static_cast<bool>(in.read(text.data(), static_cast<std::streamsize>(text.size())));
 }
 
 }  // namespace
@@ -203,19 +195,21 @@ void write_step_assembly(const std::string& path, const std::vector<StepPart>& p
   // Units: the document 5, the translation to STEP entities 45 (OpenCASCADE reports it), the file 50 (it cannot
   // report: the fraction waits at 0.5 while it is written and its equal geometry shared).
   progress.set_total(100);
-  // Written beside the target and renamed, so that a failed write leaves no partial file under the name.
-  const std::string partial = path + ".partial";
-  bool ok = false;
-  try {
-    ok = write_occ_step(partial, parts, assembly_name, progress) && share_geometry_in_file(partial) &&
-         std::rename(partial.c_str(), path.c_str()) == 0;
-  } catch (...) {  // cancelled, out of memory: nothing left behind
-    std::remove(partial.c_str());
-    throw;
-  }
-  if (!ok) {
-    std::remove(partial.c_str());
+  // Written beside the target and renamed (PartialFile), so that a failure or a cancel leaves no file under the
+  // name; an unwritable path is refused here, before the translation. OpenCASCADE writes its own file to a scratch
+  // beside it, read back and shared (step_shared_geometry.hpp), and removed.
+  PartialFile file(path);
+  PartialFile occ_file(path + ".occ", false);
+  std::string text;
+  if (!write_occ_step(occ_file.temporary_path(), parts, assembly_name, progress) ||
+      !read_whole_file(occ_file.temporary_path(), text))
     fail_input("path", "cannot write a STEP file to '" + path + "'");
+  text = share_equal_geometry(std::move(text));
+  try {
+    file.write(text);
+    file.commit();
+  } catch (const std::runtime_error& e) {
+    fail_input("path", "cannot write a STEP file to '" + path + "' (" + e.what() + ")");
   }
   progress.finish();
 }
