@@ -74,20 +74,20 @@ void measure(const std::string& what, const FlatLattice& lattice, const TopoDS_S
   const std::string dir = std::filesystem::temp_directory_path().string() + "/steady_bench_step_read_" +
                           std::to_string(::getpid());
   std::filesystem::create_directories(dir);
-  const std::string built = dir + "/as_built.step", connected = dir + "/connected.step";
+  const std::string built = dir + "/as_built.step", ours = dir + "/ours.step";
   const double write_built =
       bench::seconds_of([&] { write_as_built(built, trimmed.lattice, trimmed.skin); });
   const double write_ours = bench::seconds_of(
-      [&] { write_step_assembly(connected, {{"Lattice", trimmed.lattice}, {"Skin", trimmed.skin}}); });
+      [&] { write_step_assembly(ours, {{"Lattice", trimmed.lattice}, {"Skin", trimmed.skin}}); });
   std::vector<double> a, c;
-  TopoDS_Shape read_built, read_connected;
+  TopoDS_Shape read_built, read_ours;
   for (int run = 0; run < 3; ++run) {
     a.push_back(bench::seconds_of([&] { read_built = read_as_freecad_does(built); }));
-    c.push_back(bench::seconds_of([&] { read_connected = read_as_freecad_does(connected); }));
+    c.push_back(bench::seconds_of([&] { read_ours = read_as_freecad_does(ours); }));
   }
-  const long solids_a = solid_count(read_built), solids_c = solid_count(read_connected);
+  const long solids_a = solid_count(read_built), solids_c = solid_count(read_ours);
   const long lattice_faces = face_count(trimmed.lattice), faces = lattice_faces + face_count(trimmed.skin);
-  const bool valid = BRepCheck_Analyzer(read_connected).IsValid();
+  const bool valid = BRepCheck_Analyzer(read_ours).IsValid();
   std::sort(a.begin(), a.end());
   std::sort(c.begin(), c.end());
   // The sharing pass alone, on OpenCASCADE's file (ours runs it on its XCAF writer's file, with names and colours).
@@ -95,7 +95,7 @@ void measure(const std::string& what, const FlatLattice& lattice, const TopoDS_S
   const double share_seconds = bench::seconds_of([&] { (void)share_equal_geometry(built_text); });
   const double beams = static_cast<double>(lattice.beams.size());
   const double size_built = static_cast<double>(std::filesystem::file_size(built));
-  const double size_ours = static_cast<double>(std::filesystem::file_size(connected));
+  const double size_ours = static_cast<double>(std::filesystem::file_size(ours));
   std::printf("%s: %zu beams, %ld faces (lattice %ld), trimmed in %.1f s\n", what.c_str(), lattice.beams.size(), faces,
               lattice_faces, trim_seconds);
   std::printf("  file: OpenCASCADE's writer %.1f MB (%.1f KB per beam) in %.1f s, ours %.1f MB (%.1f KB per beam) in "
@@ -103,7 +103,7 @@ void measure(const std::string& what, const FlatLattice& lattice, const TopoDS_S
               size_built / 1e6, size_built / 1e3 / beams, write_built, size_ours / 1e6, size_ours / 1e3 / beams,
               write_ours, size_built / size_ours, share_seconds);
   std::printf("  read back (median of 3): OpenCASCADE's file %.1f s, ours %.1f s: %.2fx faster; "
-              "solids %ld / %ld, connected file's shape %s\n",
+              "solids %ld / %ld, our file's shape %s\n",
               a[1], c[1], a[1] / c[1], solids_a, solids_c, valid ? "valid" : "INVALID");
   std::filesystem::remove_all(dir);
 }
