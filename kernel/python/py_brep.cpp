@@ -108,6 +108,9 @@ void fill_stats(const steady::TrimStats& s, py::dict& d) {
   d["pores_reason"] = s.pores_reason;
   d["skin_pieces"] = s.skin_pieces;
   d["skin_pieces_volume"] = s.skin_pieces_volume;
+  d["grazing_pieces"] = s.grazing_pieces;
+  d["grazing_kept_reason"] = s.grazing_kept_reason;
+  d["grazing_seconds"] = s.grazing_seconds;
   d["kept_hubs"] = s.kept_hubs;
   d["lost_neighbour_hubs"] = s.lost_neighbour_hubs;
   d["bridges"] = s.bridges;
@@ -266,7 +269,9 @@ void bind_brep(py::module_& m) {
       "gives): the part as printed, and what a mesher for analysis takes (docs/fea.md). "
       "progress: as for brep(); a cancelled call raises steadylattice.Cancelled and leaves "
       "the file untouched (it is written only at the end). stats: None or a dict, filled as by brep() (without "
-      "volume), with skin_pieces and skin_pieces_volume: the pieces given to the skin.");
+      "volume), with skin_pieces and skin_pieces_volume: the pieces given to the skin; of those, grazing_pieces: "
+      "the lenses of beams whose axis runs outside the inner wall while their cone dips through it, split off "
+      "the lattice in grazing_seconds (grazing_kept_reason: why not, when that split failed its checks).");
   m.def(
       "brep_properties",
       [](const std::string& text) {

@@ -28,6 +28,7 @@
 #include "steady/brep/brep_io.hpp"
 #include "steady/core/constants.hpp"
 #include "steady/core/errors.hpp"
+#include "steady/lattice/beam_frustum.hpp"
 #include "steady/lattice/flat_lattice.hpp"
 #include "steady/lattice/lattice_io.hpp"
 #include "steady/lattice/presets.hpp"
@@ -352,6 +353,48 @@ TEST(Trim, LoosePiecesOfTheLatticeGoToTheSkin) {
   const double balls = 4.0 / 3.0 * kPi * 2.0 + kPi * 0.25 * 4.0;  // balls and the whole beam: an upper bound
   EXPECT_LT(lattice, balls);
   EXPECT_GT(lattice, 4.0 / 3.0 * kPi * 2.0 - 1e-9);
+  EXPECT_EQ(apart.stats.grazing_pieces, 0) << "the chord's axis runs inside the wall: it is not a grazing beam";
+}
+
+// A beam whose axis runs outside the skin's inner wall while its cone dips through it (the main job's lens, which
+// gmsh cannot mesh) goes to the skin: the lattice part keeps nothing of its frustum. In a cylinder of radius 10 with
+// a skin of 1, nodes A and B at radius 9.1, 10 degrees apart, are joined by a beam of radius 0.15 whose axis comes
+// no nearer the axis than 9.1 cos 5 = 9.065, so it dips up to 0.085 into the inner wall (radius 9), from exit plane
+// to exit plane: its lens is joined to the lattice through A's and B's balls. A and B are joined to the lattice
+// inside by beams that cross the wall squarely.
+TEST(Trim, ABeamGrazingTheInnerWallGoesToTheSkinWhole) {
+  const double t = 10.0 * kPi / 180.0, rho = 9.1, in = 6.0;
+  const FlatLattice f = make_flat_lattice(
+      {{{in, 0.0, 5.0}, 0.3}, {{in * std::cos(t), in * std::sin(t), 5.0}, 0.3},     // C, D inside
+       {{rho, 0.0, 5.0}, 0.3}, {{rho * std::cos(t), rho * std::sin(t), 5.0}, 0.3}},  // A, B in the wall
+      {{0, 1, 0.2, 0.2}, {0, 2, 0.2, 0.2}, {1, 3, 0.2, 0.2}, {2, 3, 0.15, 0.15}});
+  const TopoDS_Shape body = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 10.0, 10.0).Shape();
+  TrimOptions o;
+  o.skin = 1.0;
+  const TrimResult united = trim_lattice(f, body, o);
+  o.unite_skin = false;
+  const TrimResult apart = trim_lattice(f, body, o);
+  expect_valid_single_solid(apart.lattice, "lattice part");
+  expect_valid_single_solid(apart.skin, "skin part with the lens");
+  EXPECT_EQ(apart.stats.grazing_pieces, 1) << apart.stats.grazing_kept_reason;
+  EXPECT_EQ(apart.stats.skin_pieces, 1);  // the lens alone: before the split it was one with the lattice
+  // The grazing beam's frustum between its exit planes, built here on its own.
+  const BeamFrustum fr = beam_frustum(f.balls[2], f.balls[3], 0.15, 0.15);
+  ASSERT_TRUE(fr.exists);
+  const Vec3 p = fr.cone.a + fr.exit_a * fr.cone.axis;
+  const TopoDS_Shape frustum = BRepPrimAPI_MakeCylinder(
+      gp_Ax2(gp_Pnt(p.x, p.y, p.z), gp_Dir(fr.cone.axis.x, fr.cone.axis.y, fr.cone.axis.z)), 0.15, fr.length()).Shape();
+  const double frustum_volume = kPi * 0.15 * 0.15 * fr.length();
+  // The lens: the frustum inside the inner wall (the frustum lies in the lattice, so all of it there is lattice).
+  const TopoDS_Shape inner = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, 1), gp_Dir(0, 0, 1)), 9.0, 8.0).Shape();
+  const double lens = shape_volume(BRepAlgoAPI_Common(frustum, inner).Shape());
+  EXPECT_GT(lens, 1e-3);
+  EXPECT_NEAR(apart.stats.skin_pieces_volume / lens, 1.0, 1e-8);
+  // The lattice part has nothing of the frustum, the skin part all of it (it lies inside the body).
+  EXPECT_LT(shape_volume(BRepAlgoAPI_Common(apart.lattice, frustum).Shape()), 1e-9 * frustum_volume);
+  EXPECT_NEAR(shape_volume(BRepAlgoAPI_Common(apart.skin, frustum).Shape()) / frustum_volume, 1.0, 1e-8);
+  // Shared faces, no overlap: the two parts add up to the united part.
+  EXPECT_NEAR((shape_volume(apart.lattice) + shape_volume(apart.skin)) / shape_volume(united.part), 1.0, 1e-9);
 }
 
 TEST(Trim, CurvedBodiesAndGradedLatticesAgreeWithMonteCarlo) {

@@ -47,8 +47,8 @@ def write_step_assembly(obj, path, report=None, united=False):
     """STEP with the skin and the lattice as two named, coloured parts (the kernel's XCAF writer); with `united`
     one part named as the object, the lattice united with its skin (its Shape).
     report(fraction) -> False cancels (steadylattice.Cancelled; the file is not written).
-    Returns the trim's stats (a dict; skin_pieces: pieces of the lattice that touch only the skin, written as part
-    of the skin so that the lattice part is one solid)."""
+    Returns the trim's stats (a dict; skin_pieces: pieces of the lattice written as part of the skin, those that
+    touch only the skin and, grazing_pieces of them, the lenses of beams whose axis runs in the skin)."""
     lattice, body, policy, skin, dangling = kernel_request(obj)
     stats = {}
     lattice_name = obj.Label if united else obj.Label + " lattice"
@@ -56,6 +56,8 @@ def write_step_assembly(obj, path, report=None, united=False):
                        progress=report, stats=stats, united=united)
     if stats.get("skin_pieces") and not united:
         FreeCAD.Console.PrintMessage(
-            "%s: %d pieces of the lattice (%.4g mm^3) touch only the skin; they are part of \"%s skin\" in %s\n"
-            % (obj.Label, stats["skin_pieces"], stats["skin_pieces_volume"], obj.Label, path))
+            "%s: %d pieces of the lattice (%.4g mm^3) are part of \"%s skin\" in %s: %d that touch only the skin "
+            "and %d lenses of beams whose axis runs in the skin but which dip through its inner wall\n"
+            % (obj.Label, stats["skin_pieces"], stats["skin_pieces_volume"], obj.Label, path,
+               stats["skin_pieces"] - stats["grazing_pieces"], stats["grazing_pieces"]))
     return stats

@@ -79,6 +79,11 @@ struct TrimStats {
   // hubs cut at the inner wall, touching only the skin), given to the skin part, and their volume.
   std::int64_t skin_pieces = 0;
   double skin_pieces_volume = 0.0;
+  // Of those pieces, the lenses of beams whose axis runs outside the inner wall while their cone dips through it
+  // (grazing_beams.hpp), split off the lattice for the skin; and why they were not, when the split failed its checks.
+  std::int64_t grazing_pieces = 0;
+  std::string grazing_kept_reason;
+  double grazing_seconds = 0.0;
   bool relaid_out = false;                // the first attempt failed as a whole; a later one (every cut halfway,
                                           // or the spheres laid out the other way) made the part
   std::string relaid_reason;              //   why the earlier attempts failed
