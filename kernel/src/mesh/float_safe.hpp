@@ -16,10 +16,12 @@ Vec3 float_rounded(const Vec3& p);
 // Rounds every vertex of `mesh` to floats, without repair (for parts whose edges are far above a float's resolution).
 void round_to_floats(TriangleMesh& mesh);
 
-// The band (a Boolean's result: a 2-manifold, open or closed) with its vertices rounded to floats, the edges and
-// triangles that rounding made degenerate removed, and no self-intersection (CGAL's exact predicates on the
-// rounded points). Returns the number of triangles removed; std::runtime_error naming `what` if a degeneracy
-// cannot be removed or the rounded band intersects itself.
-std::int64_t make_float_safe(TriangleMesh& band, const std::string& what);
+// The band (a Boolean's result: a 2-manifold, open or closed) with its vertices rounded to floats, its edges shorter
+// than 16 floats' resolution collapsed, then, where rounded triangles intersect, the shortest edges of those that
+// are needles collapsed when shorter than `needle_limit` (no border vertex ever moves); the triangles that rounding
+// made degenerate removed, and no self-intersection (CGAL's exact predicates on the rounded points). Returns the
+// number of triangles removed; std::runtime_error naming `what` if a degeneracy cannot be removed or the rounded band
+// intersects itself.
+std::int64_t make_float_safe(TriangleMesh& band, const std::string& what, double needle_limit = 0.0);
 
 }  // namespace steady

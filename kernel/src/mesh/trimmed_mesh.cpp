@@ -121,6 +121,10 @@ struct Piece {
   }
 };
 
+// Where the rounded band folds, its needles shorter than this fraction of the tolerance collapse (float_safe.hpp):
+// the surface moves by at most that much.
+constexpr double kNeedleCollapseFraction = 0.1;
+
 constexpr const char* kCapGone = "mesh: the surface cut into an element classified clear of it (a cap is gone)";
 
 // The band through one Boolean. Without a skin: band ∩ body. With one, the part is (lattice ∩ body) ∪ skin, which
@@ -282,7 +286,8 @@ TriangleMesh trimmed_lattice_mesh(const FlatLattice& f, const MeshOptions& optio
     clock = std::chrono::steady_clock::now();
     // Every writer stores floats: the band is rounded and repaired here, the rest (edges far above a float's
     // resolution) only rounded; the join still matches bit for bit, both sides rounded alike.
-    stats.float_removed_triangles = make_float_safe(band_done, "the trimmed band");
+    stats.float_removed_triangles =
+        make_float_safe(band_done, "the trimmed band", kNeedleCollapseFraction * options.tolerance);
   } catch (const std::runtime_error& e) {
     // Where the body cuts a group of short beams' hubs, the cut can meet what is left of the slivers between the
     // two tessellations of a short beam's cone: said as the short beams' refusal, which names what helps.
