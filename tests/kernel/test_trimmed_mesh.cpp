@@ -277,7 +277,8 @@ TriangleMesh read_mesh_text(const std::string& name) {
 // by a wall vertex, a wall vertex under a lattice triangle), and once rounded to floats the band intersected
 // itself: the export failed. The repair collapses those short edges and needles.
 TEST(TrimmedMesh, TheMainJobAtFineTolerancesStaysSafeInFloats) {
-  const FlatLattice f = flatten(lattice_from_json(test::file_bytes(std::string(STEADY_TEST_DATA) + "/main_job_octet.json")));
+  const FlatLattice f =
+      flatten(lattice_from_json(test::file_bytes(std::string(STEADY_TEST_DATA) + "/main_job_octet.json")));
   for (const char* tolerance : {"0.005", "0.003"}) {
     SCOPED_TRACE(tolerance);
     const TriangleMesh body = read_mesh_text(std::string("main_job_body_mesh_") + tolerance + ".txt"),

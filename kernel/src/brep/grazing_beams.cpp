@@ -19,8 +19,10 @@
 #include <sstream>
 #include <utility>
 
+#include "brep/loose_pieces.hpp"
 #include "brep/occ_progress.hpp"
 #include "brep/pcurve_pieces.hpp"
+#include "brep/trim_phases.hpp"
 #include "steady/brep/brep_io.hpp"
 
 namespace steady::trim {
@@ -94,12 +96,6 @@ std::vector<TopoDS_Shape> faces_not_in(const TopoDS_Shape& shape, const std::uno
   return out;
 }
 
-std::unordered_set<const void*> face_tshapes(const TopoDS_Shape& shape) {
-  std::unordered_set<const void*> out;
-  for (TopExp_Explorer x(shape, TopAbs_FACE); x.More(); x.Next()) out.insert(x.Current().TShape().get());
-  return out;
-}
-
 // The flux of (x - o)/3 through oriented faces (their share of a solid's volume, additive for one point o), and the
 // sum of the faces' shares taken unsigned (the scale of its integration error). BRepGProp's own VolumeProperties
 // integrates about a point of each shape it is given, so shares of faces given one by one do not add up.
@@ -120,12 +116,6 @@ std::pair<double, double> volume_shares(const std::vector<TopoDS_Shape>& faces, 
     scale += std::abs(integral.Mass());
   }
   return {sum, scale};
-}
-
-bool holds_a_whole_hub(const TopoDS_Shape& solid, const std::unordered_set<const void*>& whole_hub_faces) {
-  for (TopExp_Explorer x(solid, TopAbs_FACE); x.More(); x.Next())
-    if (whole_hub_faces.count(x.Current().TShape().get())) return true;
-  return false;
 }
 
 Bnd_Box box_of(const TopoDS_Shape& shape) {
@@ -227,7 +217,7 @@ GrazingSplit split_off_grazing_beams(const TopoDS_Shape& lattice, const std::vec
   }
   const TopoDS_Shape split = splitter.Shape();
   give_edges_their_own_pcurves(split);  // the split kept the parents' pcurves on pieces of split edges
-  const std::unordered_set<const void*> lattice_faces = face_tshapes(lattice);
+  const std::unordered_set<const void*> lattice_faces = face_set(lattice);
   const SolidCensus before = census(lattice, whole_hub_faces), after = census(split, whole_hub_faces);
   // A piece the split made lies in a frustum; one it left alone (the OpenCASCADE copy of a piece the lattice had,
   // which may come with new faces) has the same box as before.
@@ -241,7 +231,7 @@ GrazingSplit split_off_grazing_beams(const TopoDS_Shape& lattice, const std::vec
   // The volume changes only through the faces the split made or replaced: theirs must balance (the whole lattice's
   // integration would take several seconds).
   const std::vector<TopoDS_Shape> made = faces_not_in(split, lattice_faces),
-                                  replaced = faces_not_in(lattice, face_tshapes(split));
+                                  replaced = faces_not_in(lattice, face_set(split));
   const auto [added, added_scale] = volume_shares(made, near);
   const auto [removed, removed_scale] = volume_shares(replaced, near);
   if (after.holding != before.holding)

@@ -32,9 +32,10 @@ struct GrazingSplit {
   std::string kept_reason;  // why the lattice was kept as given (the split failed its checks), or empty
 };
 
-// Splits `lattice` (solids, trimmed to the skin's inner wall) along the frustums of `beams`. Checked: valid, the
-// same volume to 1e-9, as many solids holding a hub built whole (a face in `whole_hub_faces`) as before, and every piece
-// split off within a frustum's box; otherwise the lattice is kept as given and `kept_reason` says why.
+// Splits `lattice` (solids, trimmed to the skin's inner wall) along the frustums of `beams`. Checked: valid; the
+// same volume (the faces the split made enclose what those it replaced did, to 1e-7 of their size); as many solids
+// holding a hub built whole (a face in `whole_hub_faces`) as before; every piece split off within a frustum's box.
+// Otherwise the lattice is kept as given and `kept_reason` says why.
 GrazingSplit split_off_grazing_beams(const TopoDS_Shape& lattice, const std::vector<BeamFrustum>& frustums,
                                      const std::vector<std::int64_t>& beams,
                                      const std::unordered_set<const void*>& whole_hub_faces, Progress& progress);

@@ -23,15 +23,6 @@ std::vector<TopoDS_Shape> solids_of(const TopoDS_Shape& shape) {
   return out;
 }
 
-// Whether `solid` holds a hub the trim built whole (inside the inner wall): one of its faces is one of theirs.
-// Deciding it from the geometry instead (a ball's centre classified in the solid, its distance to the faces) took
-// 40 s on the main job's lattice (3,759 faces); this takes milliseconds.
-bool holds_a_whole_hub(const TopoDS_Shape& solid, const std::unordered_set<const void*>& whole_hub_faces) {
-  for (TopExp_Explorer e(solid, TopAbs_FACE); e.More(); e.Next())
-    if (whole_hub_faces.count(e.Current().TShape().get())) return true;
-  return false;
-}
-
 // The skin fused with the pieces (glued: they meet on faces of its inner wall), checked; where that check fails,
 // the skin and the pieces side by side in one compound (valid solids sharing faces), and why in `reason`.
 TopoDS_Shape glued_to_skin(const TopoDS_Shape& skin, const std::vector<TopoDS_Shape>& pieces, double pieces_volume,
@@ -63,6 +54,14 @@ TopoDS_Shape glued_to_skin(const TopoDS_Shape& skin, const std::vector<TopoDS_Sh
 }
 
 }  // namespace
+
+// Deciding it from the geometry instead (a ball's centre classified in the solid, its distance to the faces) took
+// 40 s on the main job's lattice (3,759 faces); this takes milliseconds.
+bool holds_a_whole_hub(const TopoDS_Shape& solid, const std::unordered_set<const void*>& whole_hub_faces) {
+  for (TopExp_Explorer e(solid, TopAbs_FACE); e.More(); e.Next())
+    if (whole_hub_faces.count(e.Current().TShape().get())) return true;
+  return false;
+}
 
 PartsApart give_loose_pieces_to_skin(const TopoDS_Shape& lattice, const TopoDS_Shape& skin,
                                      const std::unordered_set<const void*>& whole_hub_faces, Progress& progress) {

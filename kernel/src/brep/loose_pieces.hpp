@@ -21,6 +21,10 @@ struct PartsApart {
   std::string unfused_reason;  // empty, or why the skin part is the skin and the pieces side by side
 };
 
+// Whether `solid` holds a hub the trim built whole (inside the inner wall): one of its faces is one of theirs (by
+// TShape, `whole_hub_faces`).
+bool holds_a_whole_hub(const TopoDS_Shape& solid, const std::unordered_set<const void*>& whole_hub_faces);
+
 // Splits `lattice` (trimmed to the skin's inner wall) into the solids that hold a hub built whole (one of their
 // faces is in `whole_hub_faces`, by TShape) and the pieces that hold none; the pieces are fused to `skin` with a
 // glued Fuse (they share faces on the inner wall), checked: valid, as many solids as the skin had, volume the sum to 1e-6. Should the Fuse fail that check, the

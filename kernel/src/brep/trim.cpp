@@ -190,8 +190,8 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
     stats.grazing_pieces = grazing.pieces;
     stats.grazing_seconds = seconds_since(pieces_clock);
     stats.grazing_kept_reason = grazing.kept_reason;
-    report(options, "trim: " + std::to_string(grazing.pieces) + " lenses of " + std::to_string(grazing_candidates.size()) +
-                        " beams grazing the inner wall split off" +
+    report(options, "trim: " + std::to_string(grazing.pieces) + " lenses of " +
+                        std::to_string(grazing_candidates.size()) + " beams grazing the inner wall split off" +
                         (grazing.kept_reason.empty() ? "" : "; the lattice kept whole: " + grazing.kept_reason));
     const PartsApart apart = give_loose_pieces_to_skin(grazing.lattice, out.skin, interior_faces, checks_only);
     report(options, "trim: " + std::to_string(apart.pieces) + " loose pieces of the lattice given to the skin in " +

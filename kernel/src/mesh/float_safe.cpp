@@ -29,6 +29,8 @@ double to_float(double d) {
   return f;
 }
 
+constexpr int kUnfoldRounds = 8;
+
 // Collapses edge e unless both its ends are on the border, keeping the border end where one is (the loops where the
 // band joins the rest must match it bit for bit) and the link condition (the mesh stays 2-manifold).
 bool collapse(CgalMesh& m, CgalMesh::Edge_index e) {
@@ -60,14 +62,15 @@ std::int64_t collapse_short_edges(CgalMesh& m, double gap) {
 }
 
 // Where rounded triangles still intersect, collapses the shortest edge of each that is a needle (its shortest edge
-// below 1/20 of its longest) shorter than `limit`, a few rounds. Such needles are the Boolean's slivers where the
-// lattice runs within a few floats of the wall's tessellation (a wall vertex under a lattice triangle: the main job
-// at tolerances 0.003 to 0.004). Returns how many collapsed.
-std::int64_t unfold_needles(CgalMesh& m, double limit) {
-  std::int64_t collapsed = 0;
-  for (int round = 0; round < 8 && limit > 0.0; ++round) {
+// below 1/20 of its longest) shorter than `limit`, for up to kUnfoldRounds rounds. Such needles are the Boolean's
+// slivers where the lattice runs within a few floats of the wall's tessellation (a wall vertex under a lattice
+// triangle: the main job at tolerances 0.003 to 0.004). Returns whether the mesh is then free of self-intersections.
+bool unfold_needles(CgalMesh& m, double limit) {
+  for (int round = 0;; ++round) {
     std::vector<std::pair<CgalMesh::Face_index, CgalMesh::Face_index>> pairs;
     PMP::self_intersections(m, std::back_inserter(pairs));
+    if (pairs.empty()) return true;
+    if (round == kUnfoldRounds || limit <= 0.0) return false;
     std::set<CgalMesh::Face_index> faces;
     for (const auto& [f, g] : pairs) faces.insert(f), faces.insert(g);
     std::int64_t now = 0;
@@ -82,11 +85,9 @@ std::int64_t unfold_needles(CgalMesh& m, double limit) {
       }
       if (lo < limit * limit && lo * 400.0 < hi && collapse(m, shortest)) ++now;
     }
-    if (now == 0) break;
+    if (now == 0) return false;
     m.collect_garbage();
-    collapsed += now;
   }
-  return collapsed;
 }
 
 }  // namespace
@@ -118,8 +119,7 @@ std::int64_t make_float_safe(TriangleMesh& band, const std::string& what, double
       throw std::runtime_error("mesh: a triangle of " + what + " made flat by rounding to floats cannot be removed");
     m.collect_garbage();
   }
-  unfold_needles(m, needle_limit);
-  if (PMP::does_self_intersect(m))
+  if (!unfold_needles(m, needle_limit))
     throw std::runtime_error("mesh: " + what + " intersects itself once rounded to floats");
   // Back as an indexed mesh of the vertices still in a triangle (a removal can leave one isolated).
   band.vertices.clear(), band.triangles.clear();
