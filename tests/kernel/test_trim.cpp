@@ -327,6 +327,24 @@ TEST(Trim, SkinUnitedWithLatticeMatchesClosedForm) {
   EXPECT_NEAR(shape_volume(parts.lattice) / grid_clip_volume(f, -0.4, 4.4), 1.0, 1e-7);
 }
 
+// `f` trimmed into a cylinder of radius and height 10 with a skin of 1, united and with the skin apart (the lattice
+// and the skin each checked to be one valid solid).
+struct SkinnedCylinderParts {
+  TrimResult united, apart;
+};
+SkinnedCylinderParts trim_into_skinned_cylinder(const FlatLattice& f) {
+  const TopoDS_Shape body = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 10.0, 10.0).Shape();
+  TrimOptions o;
+  o.skin = 1.0;
+  SkinnedCylinderParts out;
+  out.united = trim_lattice(f, body, o);
+  o.unite_skin = false;
+  out.apart = trim_lattice(f, body, o);
+  expect_valid_single_solid(out.apart.lattice, "lattice part");
+  expect_valid_single_solid(out.apart.skin, "skin part with the lattice's pieces");
+  return out;
+}
+
 // With the skin apart (a STEP assembly), a piece of the lattice that holds no whole node goes to the skin. In a
 // cylinder of radius 10 with a skin of 1, a beam between two nodes in the skin (at radius 9.6, 60 degrees apart)
 // dips as a chord through the inner wall (radius 9): what lies inside is a piece touching only the skin.
@@ -335,14 +353,7 @@ TEST(Trim, LoosePiecesOfTheLatticeGoToTheSkin) {
   const FlatLattice f = make_flat_lattice({{{0.0, 0.0, 5.0}, 1.0}, {{4.0, 0.0, 5.0}, 1.0},  // the lattice inside
                                            {{a, -b, 5.0}, 0.3}, {{a, b, 5.0}, 0.3}},         // the chord's nodes
                                           {{0, 1, 0.5, 0.5}, {2, 3, 0.3, 0.3}});
-  const TopoDS_Shape body = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 10.0, 10.0).Shape();
-  TrimOptions o;
-  o.skin = 1.0;
-  const TrimResult united = trim_lattice(f, body, o);
-  o.unite_skin = false;
-  const TrimResult apart = trim_lattice(f, body, o);
-  expect_valid_single_solid(apart.lattice, "lattice part");
-  expect_valid_single_solid(apart.skin, "skin part with the piece");
+  const auto [united, apart] = trim_into_skinned_cylinder(f);
   EXPECT_EQ(apart.stats.skin_pieces, 1);
   // The chord's piece: the beam's cylinder where it lies inside radius 9, less than its part within +-b.
   EXPECT_GT(apart.stats.skin_pieces_volume, 0.0);
@@ -368,14 +379,7 @@ TEST(Trim, ABeamGrazingTheInnerWallGoesToTheSkinWhole) {
       {{{in, 0.0, 5.0}, 0.3}, {{in * std::cos(t), in * std::sin(t), 5.0}, 0.3},     // C, D inside
        {{rho, 0.0, 5.0}, 0.3}, {{rho * std::cos(t), rho * std::sin(t), 5.0}, 0.3}},  // A, B in the wall
       {{0, 1, 0.2, 0.2}, {0, 2, 0.2, 0.2}, {1, 3, 0.2, 0.2}, {2, 3, 0.15, 0.15}});
-  const TopoDS_Shape body = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 10.0, 10.0).Shape();
-  TrimOptions o;
-  o.skin = 1.0;
-  const TrimResult united = trim_lattice(f, body, o);
-  o.unite_skin = false;
-  const TrimResult apart = trim_lattice(f, body, o);
-  expect_valid_single_solid(apart.lattice, "lattice part");
-  expect_valid_single_solid(apart.skin, "skin part with the lens");
+  const auto [united, apart] = trim_into_skinned_cylinder(f);
   EXPECT_EQ(apart.stats.grazing_pieces, 1) << apart.stats.grazing_kept_reason;
   EXPECT_EQ(apart.stats.skin_pieces, 1);  // the lens alone: before the split it was one with the lattice
   // The grazing beam's frustum between its exit planes, built here on its own.
