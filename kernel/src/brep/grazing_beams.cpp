@@ -216,9 +216,11 @@ GrazingSplit split_off_grazing_beams(const TopoDS_Shape& lattice, const std::vec
     return out;
   }
   const TopoDS_Shape split = splitter.Shape();
+  const SolidCensus before = census(lattice, whole_hub_faces), after = census(split, whole_hub_faces);
+  // No frustum reached into the lattice: it stays as it was (not the Splitter's copy of it).
+  if (after.pieces.size() == before.pieces.size() && after.holding == before.holding) return out;
   give_edges_their_own_pcurves(split);  // the split kept the parents' pcurves on pieces of split edges
   const std::unordered_set<const void*> lattice_faces = face_set(lattice);
-  const SolidCensus before = census(lattice, whole_hub_faces), after = census(split, whole_hub_faces);
   // A piece the split made lies in a frustum; one it left alone (the OpenCASCADE copy of a piece the lattice had,
   // which may come with new faces) has the same box as before.
   const double size = std::sqrt(box_of(lattice).SquareExtent());
