@@ -148,8 +148,8 @@ SolidCensus census(const TopoDS_Shape& shape, const std::unordered_set<const voi
   return out;
 }
 
-// An axis-aligned box around a frustum, padded by half its largest radius (bounding boxes of B-spline faces are
-// their control polygons').
+// An axis-aligned box around a frustum, padded by 1.5 times its largest radius (bounding boxes of B-spline faces
+// are their control polygons').
 struct FrustumBox {
   Vec3 lo, hi;
   bool holds(const Bnd_Box& b) const {  // b inside
