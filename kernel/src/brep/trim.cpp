@@ -193,7 +193,13 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
     report(options, "trim: " + std::to_string(grazing.pieces) + " lenses of " +
                         std::to_string(grazing_candidates.size()) + " beams grazing the inner wall split off" +
                         (grazing.kept_reason.empty() ? "" : "; the lattice kept whole: " + grazing.kept_reason));
-    const PartsApart apart = give_loose_pieces_to_skin(grazing.lattice, out.skin, interior_faces, checks_only);
+    PartsApart apart = give_loose_pieces_to_skin(grazing.lattice, out.skin, interior_faces, checks_only);
+    if (grazing.pieces > 0 && !apart.unfused_reason.empty()) {
+      // The skin would be several solids: the lenses stay in the lattice, and only the pieces it had go over.
+      stats.grazing_kept_reason = "the skin's glued Fuse with the lenses failed (" + apart.unfused_reason + ")";
+      stats.grazing_pieces = 0;
+      apart = give_loose_pieces_to_skin(shape, out.skin, interior_faces, checks_only);
+    }
     report(options, "trim: " + std::to_string(apart.pieces) + " loose pieces of the lattice given to the skin in " +
                         std::to_string(seconds_since(pieces_clock)) + " s");
     out.lattice = apart.lattice;

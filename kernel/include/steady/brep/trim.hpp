@@ -80,7 +80,8 @@ struct TrimStats {
   std::int64_t skin_pieces = 0;
   double skin_pieces_volume = 0.0;
   // Of those pieces, the lenses of beams whose axis runs outside the inner wall while their cone dips through it
-  // (grazing_beams.hpp), split off the lattice for the skin; and why they were not, when the split failed its checks.
+  // (grazing_beams.hpp), split off the lattice for the skin; and why they were not, when the split failed its checks
+  // or the skin's glued Fuse with them did (then the lenses stay in the lattice).
   std::int64_t grazing_pieces = 0;
   std::string grazing_kept_reason;
   double grazing_seconds = 0.0;
