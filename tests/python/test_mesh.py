@@ -109,21 +109,27 @@ def box_mesh(lo, hi):
     return v, t
 
 
-def test_a_trimmed_mesh_unites_the_hubs_of_nodes_meeting_other_nodes():
-    # The tapered diamond with nodes 0.45 of the neighbour distance (nodes meet nodes they share no beam with)
-    # trimmed into the sweep's box with a skin: closed, and the sampled volume of lattice-in-inner-box plus skin
-    # within the chord bound.
-    from crowded_sweep import TRIM_BOX, TRIM_SKIN, lattice, sampled_trimmed_volume
-    lat = lattice("diamond", 0.45, 0.5, "taper", (3, 3, 3))
+def trimmed_in_the_sweeps_box(lat, tolerance):
+    """`lat` meshed trimmed into the crowded sweep's box with its skin: closed, and the sampled volume of
+    lattice-in-inner-box plus skin within the chord bound. Returns the mesh's stats."""
+    from crowded_sweep import TRIM_BOX, TRIM_SKIN, sampled_trimmed_volume
     corner, edge = TRIM_BOX
-    tolerance, stats = 0.005, {}
+    stats = {}
     vertices, triangles = lat.to_mesh(tolerance, body=box_mesh(corner, corner + edge),
                                       inner=box_mesh(corner + TRIM_SKIN, corner + edge - TRIM_SKIN), stats=stats)
-    assert stats["foreign_groups"] > 0 and stats["crossing_hubs"] > 0
     assert edge_report(triangles) == (0, 0, 0)
     volume, area = volume_and_area(vertices, triangles)
     estimate, sigma = sampled_trimmed_volume(lat, TRIM_SKIN)
     assert estimate - 5 * sigma - tolerance * area <= volume <= estimate + 5 * sigma, (volume, estimate, sigma)
+    return stats
+
+
+def test_a_trimmed_mesh_unites_the_hubs_of_nodes_meeting_other_nodes():
+    # The tapered diamond with nodes 0.45 of the neighbour distance (nodes meet nodes they share no beam with)
+    # trimmed into the sweep's box with a skin.
+    from crowded_sweep import lattice
+    stats = trimmed_in_the_sweeps_box(lattice("diamond", 0.45, 0.5, "taper", (3, 3, 3)), 0.005)
+    assert stats["foreign_groups"] > 0 and stats["crossing_hubs"] > 0
 
 
 def test_a_trimmed_mesh_unites_the_hubs_of_short_beams():
@@ -162,19 +168,10 @@ def test_a_cancel_while_short_beams_hubs_are_united_is_a_cancel():
 def test_short_beams_united_hubs_cut_by_the_body_mesh_closed():
     # The tapered cubic cell with beams as thick as its nodes, trimmed with a skin: the body's cut through its
     # united hubs folded once rounded to floats, and the mesh was refused naming the first short beam. The band's
-    # repair (its short edges and needles collapsed where it folds) now meshes it: closed, oriented, the volume
-    # within sampling and the chord bound.
-    from crowded_sweep import TRIM_BOX, TRIM_SKIN, lattice, sampled_trimmed_volume
-    lat = lattice("cubic", 0.45, 1.0, "taper", (3, 3, 3))
-    corner, edge = TRIM_BOX
-    tolerance, stats = 0.009, {}
-    vertices, triangles = lat.to_mesh(tolerance, body=box_mesh(corner, corner + edge),
-                                      inner=box_mesh(corner + TRIM_SKIN, corner + edge - TRIM_SKIN), stats=stats)
+    # repair (its short edges and needles collapsed where it folds) now meshes it.
+    from crowded_sweep import lattice
+    stats = trimmed_in_the_sweeps_box(lattice("cubic", 0.45, 1.0, "taper", (3, 3, 3)), 0.009)
     assert stats["short_beams"] > 0 and stats["float_removed_triangles"] > 0
-    assert edge_report(triangles) == (0, 0, 0)
-    volume, area = volume_and_area(vertices, triangles)
-    estimate, sigma = sampled_trimmed_volume(lat, TRIM_SKIN)
-    assert estimate - 5 * sigma - tolerance * area <= volume <= estimate + 5 * sigma, (volume, estimate, sigma)
 
 
 def read_binary_stl(path):
