@@ -11,6 +11,8 @@
 #include <cstdint>
 #include <limits>
 #include <set>
+#include <type_traits>
+#include <utility>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -32,15 +34,38 @@ double to_float(double d) {
 constexpr int kUnfoldRounds = 8;
 
 // Collapses edge e unless both its ends are on the border, keeping the border end where one is (the loops where the
-// band joins the rest must match it bit for bit) and the link condition (the mesh stays 2-manifold).
+// band joins the rest must match it bit for bit), else the lesser point, and the link condition (the mesh stays
+// 2-manifold). What is kept depends on the points only, not on how the mesh is numbered.
 bool collapse(CgalMesh& m, CgalMesh::Edge_index e) {
   const auto h = m.halfedge(e);
   const auto a = m.source(h), b = m.target(h);
   const bool a_border = static_cast<bool>(CGAL::is_border(a, m)), b_border = static_cast<bool>(CGAL::is_border(b, m));
   if ((a_border && b_border) || !CGAL::Euler::does_satisfy_link_condition(e, m)) return false;
-  const auto kept_point = a_border ? m.point(a) : m.point(b);
+  const bool keep_a = a_border || (!b_border && m.point(a) < m.point(b));
+  const auto kept_point = keep_a ? m.point(a) : m.point(b);
   m.point(CGAL::Euler::collapse_edge(e, m)) = kept_point;
   return true;
+}
+
+// Edges or faces in the order of their points (each element's points sorted, then compared in turn), so that the
+// collapses below give the same mesh however the Boolean before them numbered it (its order varies with threads).
+template <class Element>
+void sort_by_points(const CgalMesh& m, std::vector<Element>& elements) {
+  const auto points_of = [&](Element x) {
+    std::vector<CgalKernel::Point_3> p;
+    if constexpr (std::is_same_v<Element, CgalMesh::Edge_index>) {
+      p = {m.point(m.vertex(x, 0)), m.point(m.vertex(x, 1))};
+    } else {
+      for (const auto v : CGAL::vertices_around_face(m.halfedge(x), m)) p.push_back(m.point(v));
+    }
+    std::sort(p.begin(), p.end());
+    return p;
+  };
+  std::vector<std::pair<std::vector<CgalKernel::Point_3>, Element>> keyed;
+  keyed.reserve(elements.size());
+  for (const Element x : elements) keyed.emplace_back(points_of(x), x);
+  std::sort(keyed.begin(), keyed.end(), [](const auto& p, const auto& q) { return p.first < q.first; });
+  for (std::size_t i = 0; i < keyed.size(); ++i) elements[i] = keyed[i].second;
 }
 
 double squared_length(const CgalMesh& m, CgalMesh::Edge_index e) {
@@ -54,6 +79,7 @@ std::int64_t collapse_short_edges(CgalMesh& m, double gap) {
   std::vector<CgalMesh::Edge_index> short_edges;
   for (const auto e : m.edges())
     if (squared_length(m, e) < gap * gap) short_edges.push_back(e);
+  sort_by_points(m, short_edges);
   std::int64_t collapsed = 0;
   for (const auto e : short_edges)  // an earlier collapse may have removed e, or moved an end of it
     if (!m.is_removed(e) && squared_length(m, e) < gap * gap && collapse(m, e)) ++collapsed;
@@ -71,8 +97,10 @@ bool unfold_needles(CgalMesh& m, double limit) {
     PMP::self_intersections(m, std::back_inserter(pairs));
     if (pairs.empty()) return true;
     if (round == kUnfoldRounds || limit <= 0.0) return false;
-    std::set<CgalMesh::Face_index> faces;
-    for (const auto& [f, g] : pairs) faces.insert(f), faces.insert(g);
+    std::set<CgalMesh::Face_index> folded;
+    for (const auto& [f, g] : pairs) folded.insert(f), folded.insert(g);
+    std::vector<CgalMesh::Face_index> faces(folded.begin(), folded.end());
+    sort_by_points(m, faces);
     std::int64_t now = 0;
     for (const auto f : faces) {
       if (m.is_removed(f)) continue;
