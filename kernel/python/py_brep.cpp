@@ -111,6 +111,10 @@ void fill_stats(const steady::TrimStats& s, py::dict& d) {
   d["grazing_pieces"] = s.grazing_pieces;
   d["grazing_kept_reason"] = s.grazing_kept_reason;
   d["grazing_seconds"] = s.grazing_seconds;
+  d["reseated_sphere_faces"] = s.reseated_sphere_faces;
+  d["kept_straddling_faces"] = s.kept_straddling_faces;
+  d["kept_straddling_reason"] = s.kept_straddling_reason;
+  d["reseat_seconds"] = s.reseat_seconds;
   d["kept_hubs"] = s.kept_hubs;
   d["lost_neighbour_hubs"] = s.lost_neighbour_hubs;
   d["bridges"] = s.bridges;
@@ -221,7 +225,7 @@ void bind_brep(py::module_& m) {
       "exact only to that), holed_clusters (glued to the skin with no Boolean), rim_clusters (on the inner boundary's edges and seams: united with the skin by one Cut) and of those rim_clusters_unclipped (found before their Common), relaid_out and union_through_pores "
       "with their reasons, with 'bridge' kept_hubs, lost_neighbour_hubs, bridges, rerouted_bridges (of bridges, those "
       "whose route to the nearest wall point was blocked and took another), blocked_bridges (refused: on every route "
-      "tried they would meet another kept element) and ambiguous_bridges (several nearest points), faces, volume (adaptive integration: FreeCAD's Shape.Volume can be 1e-3 off on crowded spheres), boolean_seconds, union_seconds. log: None or a callable log(message) receiving "
+      "tried they would meet another kept element) and ambiguous_bridges (several nearest points), reseated_sphere_faces (sphere faces a Boolean left with a loop across the seam, which STEP readers find invalid, rebuilt on a frame whose seam clears their loops; kept_straddling_faces and kept_straddling_reason: those left as they were, and why; reseat_seconds), faces, volume (adaptive integration: FreeCAD's Shape.Volume can be 1e-3 off on crowded spheres), boolean_seconds, union_seconds. log: None or a callable log(message) receiving "
       "the trim's diagnostics as they happen (build times, failed attempts, a union through the pores). dump_dir: "
       "a folder where a boundary cluster that fails every attempt is written as BREP, for study.");
   lattice.def(

@@ -11,7 +11,6 @@
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
-#include <BRepTools_WireExplorer.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <ElCLib.hxx>
@@ -56,6 +55,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "brep/portable_sphere_faces.hpp"
 #include "lattice/circle_frames.hpp"
 #include "lattice/cone_envelope.hpp"
 #include "steady/lattice/convex_distance.hpp"
@@ -1124,40 +1124,11 @@ std::shared_ptr<const HubCore> fuse_core(const std::vector<CoreStump>& stumps, c
   return out;
 }
 
-// Whether a sphere face of the core holds a chain of edges across the seam: leaving the seam on one side and
-// coming back to the same side at another latitude. That is a hole laid across the periodic boundary, valid in
-// OpenCASCADE, invalid once a STEP reader rebuilds the face from its loops (docs/brep.md, section 5). A chain
-// around a pole leaves on one side and comes back on the other.
+// Whether a sphere face of the core holds a chain of edges across the seam (portable_sphere_faces.hpp): valid in
+// OpenCASCADE, invalid once a STEP reader rebuilds the face from its loops (docs/brep.md, section 5).
 bool has_straddling_arc(const HubCore& core) {
-  constexpr double kOnSeam = 1e-9;
-  auto side_of = [&](const gp_Pnt2d& p) {
-    if (std::abs(p.X()) < kOnSeam) return 0;
-    if (std::abs(p.X() - 2.0 * M_PI) < kOnSeam) return 1;
-    return -1;
-  };
-  for (TopExp_Explorer f(core.faces, TopAbs_FACE); f.More(); f.Next()) {
-    const TopoDS_Face face = TopoDS::Face(f.Current());
-    if (Handle(Geom_SphericalSurface)::DownCast(BRep_Tool::Surface(face)).IsNull()) continue;
-    for (TopExp_Explorer w(face, TopAbs_WIRE); w.More(); w.Next()) {
-      int left_side = -1;  // the side the current chain left the seam from, or -1 outside a chain
-      double left_v = 0.0;
-      for (BRepTools_WireExplorer e(TopoDS::Wire(w.Current()), face); e.More(); e.Next()) {
-        const TopoDS_Edge& edge = e.Current();
-        if (BRep_Tool::Degenerated(edge) || BRep_Tool::IsClosed(edge, face)) {
-          left_side = -1;
-          continue;
-        }
-        Standard_Real t0, t1;
-        const Handle(Geom2d_Curve) pcurve = BRep_Tool::CurveOnSurface(edge, face, t0, t1);
-        if (pcurve.IsNull()) continue;
-        gp_Pnt2d start = pcurve->Value(t0), end = pcurve->Value(t1);
-        if (edge.Orientation() == TopAbs_REVERSED) std::swap(start, end);
-        if (side_of(start) >= 0) left_side = side_of(start), left_v = start.Y();
-        if (left_side >= 0 && side_of(end) == left_side && std::abs(end.Y() - left_v) > kOnSeam) return true;
-        if (side_of(end) >= 0) left_side = -1;
-      }
-    }
-  }
+  for (TopExp_Explorer f(core.faces, TopAbs_FACE); f.More(); f.Next())
+    if (has_chain_across_seam(TopoDS::Face(f.Current()))) return true;
   return false;
 }
 

@@ -1,5 +1,10 @@
 #include "steady/brep/lattice_part.hpp"
 
+#include <BRepTools_ReShape.hxx>
+
+#include <chrono>
+
+#include "brep/portable_sphere_faces.hpp"
 #include "steady/brep/brep_builder.hpp"
 #include "steady/brep/brep_io.hpp"
 #include "steady/core/errors.hpp"
@@ -9,7 +14,27 @@ namespace steady {
 
 namespace {
 
-TrimResult make_part(const FlatLattice& lattice, const LatticePartRequest& request, Progress& progress) {
+// Sphere faces whose loops cross the seam (left so by a Boolean) rebuilt on portable frames, in every shape of
+// the result: STEP readers would find them invalid (portable_sphere_faces.hpp).
+void make_sphere_faces_portable(TrimResult& r) {
+  const auto clock = std::chrono::steady_clock::now();
+  Handle(BRepTools_ReShape) reshape = new BRepTools_ReShape;
+  reshape->ModeConsiderLocation() = Standard_True;
+  const PortableSphereFaces p = reseat_sphere_faces(r.part, *reshape);
+  r.stats.reseated_sphere_faces = p.reseated;
+  r.stats.kept_straddling_faces = p.kept;
+  r.stats.kept_straddling_reason = p.kept_reason;
+  if (p.reseated > 0) {
+    const bool part_is_lattice = r.part.IsSame(r.lattice);
+    r.lattice = reshape->Apply(r.lattice);
+    if (!r.skin.IsNull()) r.skin = reshape->Apply(r.skin);
+    r.part = part_is_lattice ? r.lattice : reshape->Apply(r.part);
+  }
+  r.stats.reseat_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock).count();
+}
+
+TrimResult make_trimmed_or_whole_part(const FlatLattice& lattice, const LatticePartRequest& request,
+                                      Progress& progress) {
   TrimResult out;
   if (!request.body_brep) {
     if (request.trim.skin != 0.0) fail_input("skin", "needs a body to wrap");
@@ -31,6 +56,12 @@ TrimResult make_part(const FlatLattice& lattice, const LatticePartRequest& reque
     body = read_body_brep(*request.body_brep, "body");
   }
   return trim_lattice(lattice, body, request.trim, progress);
+}
+
+TrimResult make_part(const FlatLattice& lattice, const LatticePartRequest& request, Progress& progress) {
+  TrimResult out = make_trimmed_or_whole_part(lattice, request, progress);
+  make_sphere_faces_portable(out);
+  return out;
 }
 
 // Shares of the output's progress: the part, then its BREP text (quick) or its STEP file (translating and writing

@@ -85,6 +85,11 @@ struct TrimStats {
   std::int64_t grazing_pieces = 0;
   std::string grazing_kept_reason;
   double grazing_seconds = 0.0;
+  // Sphere faces left with a loop across the seam by a Boolean, rebuilt on a frame whose seam clears their loops
+  // (portable_sphere_faces.hpp: STEP readers find them invalid otherwise); those kept as they were, and why.
+  std::int64_t reseated_sphere_faces = 0, kept_straddling_faces = 0;
+  std::string kept_straddling_reason;
+  double reseat_seconds = 0.0;
   bool relaid_out = false;                // the first attempt failed as a whole; a later one (every cut halfway,
                                           // or the spheres laid out the other way) made the part
   std::string relaid_reason;              //   why the earlier attempts failed
