@@ -7,7 +7,6 @@
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepCheck_ListOfStatus.hxx>
 #include <BRepCheck_Result.hxx>
-#include <BRepGProp.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_CurveRepresentation.hxx>
@@ -18,7 +17,6 @@
 #include <BRep_TEdge.hxx>
 #include <BRep_TFace.hxx>
 #include <BRep_TVertex.hxx>
-#include <GProp_GProps.hxx>
 #include <Geom2d_Circle.hxx>
 #include <Geom2d_Ellipse.hxx>
 #include <Geom2d_Hyperbola.hxx>
@@ -40,6 +38,7 @@
 #include <sstream>
 
 #include "brep/child_reader.hpp"
+#include "steady/brep/boundary_volume.hpp"
 #include "brep/occ_progress.hpp"
 #include "steady/core/errors.hpp"
 
@@ -258,12 +257,7 @@ std::string validity_report(const TopoDS_Shape& shape, int max_lines) {
   return s.empty() ? "invalid (no sub-shape status)" : s;
 }
 
-double shape_volume(const TopoDS_Shape& shape) {
-  GProp_GProps props;
-  constexpr double kRelativeError = 1e-9;
-  BRepGProp::VolumeProperties(shape, props, kRelativeError, Standard_True);
-  return props.Mass();
-}
+double shape_volume(const TopoDS_Shape& shape) { return boundary_volume(shape); }
 
 std::int64_t count_subshapes(const TopoDS_Shape& shape, int type) {
   TopTools_IndexedMapOfShape map;
