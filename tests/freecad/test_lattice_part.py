@@ -202,6 +202,28 @@ class LatticePartTest(unittest.TestCase):
         self.assertAlmostEqual(total, sum(p["volume"] for p in written.values()), delta=1e-6 * total)
         self.assertAlmostEqual(total, part.Volume, delta=1e-6 * total)
 
+    def test_sphere_faces_cut_across_their_seam_read_back_valid_in_freecad(self):
+        """The sweep's cubic lattice with a bend in a tilted cylinder with a 0.3 skin: the inner wall cuts two
+        sphere faces of the lattice part across their seams. Rebuilt on frames whose seams clear their loops
+        (reseated_sphere_faces), both parts come back from FreeCAD's reader valid; the lattice part had a face
+        with intersecting wires before."""
+        tests = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+        with open(os.path.join(tests, "kernel", "data", "cubic_bend_skinned_straddle.json")) as f:
+            lattice = sl.Lattice.from_json(f.read())
+        with open(os.path.join(tests, "python", "data", "cylinder.brep")) as f:
+            body = f.read()
+        step = os.path.join(tempfile.mkdtemp(), "cubic.step")
+        stats = {}
+        lattice.write_step(step, body=body, skin=0.3, stats=stats)
+        self.assertEqual(stats["reseated_sphere_faces"], 2)
+        back = Part.read(step)
+        self.assertEqual(len(back.Solids), 2)
+        for solid in back.Solids:
+            self.assertTrue(solid.isValid(), [f.Surface for f in solid.Faces if not f.isValid()][:3])
+        written = sum(p["volume"] for p in sl.read_step(step))
+        total = sum(sl.brep_properties(s.exportBrepToString())["volume"] for s in back.Solids)
+        self.assertAlmostEqual(total, written, delta=1e-9 * total)
+
 
 if __name__ == "__main__":
     unittest.main()
