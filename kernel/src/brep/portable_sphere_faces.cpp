@@ -5,15 +5,12 @@
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepClass_FaceClassifier.hxx>
 #include <BRepTools.hxx>
-#include <BRepLib_MakeFace.hxx>
 #include <BRepTools_WireExplorer.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <ElSLib.hxx>
-#include <gp_Pnt2d.hxx>
 #include <Geom2d_BSplineCurve.hxx>
 #include <Geom2d_Line.hxx>
-#include <TopoDS_Compound.hxx>
 #include <Geom_Curve.hxx>
 #include <Geom_SphericalSurface.hxx>
 #include <TColStd_HArray1OfReal.hxx>
@@ -22,10 +19,12 @@
 #include <TopExp_Explorer.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Vertex.hxx>
 #include <TopoDS_Wire.hxx>
 #include <gp_Ax3.hxx>
+#include <gp_Pnt2d.hxx>
 
 #include <algorithm>
 #include <cmath>
@@ -282,12 +281,13 @@ struct SplitEdge {
 
 // Cuts the loop's edge holding samples `at` and `at + 1` where it meets the seam's plane (through `centre`, of
 // normal `normal`): the loop then starts at the new vertex. False when the edge is placed (its pieces could not
-// share its vertices as they are).
+// share its vertices as they are) or its curves do not share one parameter.
 bool split_at_seam(std::vector<TopoDS_Edge>& loop, const SampledLoop& samples, int at, const gp_Pnt& centre,
                    const gp_Dir& normal, std::vector<SplitEdge>& splits) {
   const int i = samples[at].edge;
   const TopoDS_Edge& edge = loop[i];
-  if (!edge.Location().IsIdentity()) return false;
+  // Both pieces keep every curve of the edge on their part of its range: the curves must share the parameter.
+  if (!edge.Location().IsIdentity() || !BRep_Tool::SameParameter(edge) || !BRep_Tool::SameRange(edge)) return false;
   Standard_Real t0, t1;
   const Handle(Geom_Curve) c = BRep_Tool::Curve(edge, t0, t1);
   auto side = [&](double t) { return gp_Vec(centre, c->Value(t)).Dot(gp_Vec(normal)); };
