@@ -4,6 +4,7 @@
 #include "steady/steady.hpp"
 
 #include "steady/brep/body_filter.hpp"
+#include "steady/brep/boundary_volume.hpp"
 #include "steady/brep/bridges.hpp"
 #include "steady/brep/connector_step.hpp"
 #include "steady/brep/connectors.hpp"

@@ -107,6 +107,17 @@ class FaceShare {
 
 }  // namespace
 
+double face_volume_share(const TopoDS_Face& face, const gp_Pnt& origin) {
+  const TopoDS_Face forward = TopoDS::Face(face.Oriented(TopAbs_FORWARD));
+  const FaceShare share(forward, origin);
+  double volume = 0.0;
+  for (TopExp_Explorer e(forward, TopAbs_EDGE); e.More(); e.Next()) {
+    const TopoDS_Edge& edge = TopoDS::Edge(e.Current());
+    if (!BRep_Tool::Degenerated(edge)) volume += share.along(edge, forward);
+  }
+  return face.Orientation() == TopAbs_REVERSED ? -volume : volume;
+}
+
 double boundary_volume(const TopoDS_Shape& shape, const char* what) {
   Bnd_Box box;
   BRepBndLib::Add(shape, box);
@@ -117,16 +128,8 @@ double boundary_volume(const TopoDS_Shape& shape, const char* what) {
   std::vector<TopoDS_Face> faces;
   for (TopExp_Explorer f(shape, TopAbs_FACE); f.More(); f.Next()) faces.push_back(TopoDS::Face(f.Current()));
   std::vector<double> shares(faces.size(), 0.0);
-  tbb::parallel_for(std::size_t(0), faces.size(), [&](std::size_t i) {
-    const TopoDS_Face forward = TopoDS::Face(faces[i].Oriented(TopAbs_FORWARD));
-    const FaceShare share(forward, middle);
-    double face_volume = 0.0;
-    for (TopExp_Explorer e(forward, TopAbs_EDGE); e.More(); e.Next()) {
-      const TopoDS_Edge& edge = TopoDS::Edge(e.Current());
-      if (!BRep_Tool::Degenerated(edge)) face_volume += share.along(edge, forward);
-    }
-    shares[i] = faces[i].Orientation() == TopAbs_REVERSED ? -face_volume : face_volume;
-  });
+  tbb::parallel_for(std::size_t(0), faces.size(),
+                    [&](std::size_t i) { shares[i] = face_volume_share(faces[i], middle); });
   double volume = 0.0;  // summed in the faces' order, so that the result does not depend on the threads
   for (const double share : shares) {
     if (std::isnan(share)) fail_input(what, "an edge of a face has no (u, v) curve on it");

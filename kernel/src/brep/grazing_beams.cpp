@@ -3,15 +3,11 @@
 #include <BRepAlgoAPI_Splitter.hxx>
 #include <BRepBndLib.hxx>
 #include <Bnd_Box.hxx>
-#include <BRepGProp_Domain.hxx>
-#include <BRepGProp_Face.hxx>
-#include <BRepGProp_Vinert.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopTools_ListOfShape.hxx>
 #include <TopoDS.hxx>
-#include <TopoDS_Iterator.hxx>
 #include <gp_Ax2.hxx>
 
 #include <algorithm>
@@ -23,6 +19,7 @@
 #include "brep/occ_progress.hpp"
 #include "brep/pcurve_pieces.hpp"
 #include "brep/trim_phases.hpp"
+#include "steady/brep/boundary_volume.hpp"
 #include "steady/brep/brep_io.hpp"
 
 namespace steady::trim {
@@ -33,9 +30,9 @@ namespace {
 // then holds nothing of the hub's other stumps.
 constexpr double kCapGap = 1e-3;
 // The balance of the volumes of the faces the split made and replaced, relative to their size: the integration's
-// own error is below 1e-8 (kShareAccuracy); a lost or doubled face is of the order of 1.
+// own error is about 1e-12 (boundary_volume.hpp), the split's curves are approximations to about 1e-7 of the
+// faces' size; a lost or doubled face is of the order of 1.
 constexpr double kVolumeCheck = 1e-7;
-constexpr double kShareAccuracy = 1e-8;
 // Steps along an axis after which it counts as not shown to stay outside (an axis running along the wall).
 constexpr int kMaxAxisSteps = 10000;
 
@@ -96,24 +93,14 @@ std::vector<TopoDS_Shape> faces_not_in(const TopoDS_Shape& shape, const std::uno
   return out;
 }
 
-// The flux of (x - o)/3 through oriented faces (their share of a solid's volume, additive for one point o), and the
-// sum of the faces' shares taken unsigned (the scale of its integration error). BRepGProp's own VolumeProperties
-// integrates about a point of each shape it is given, so shares of faces given one by one do not add up.
+// The flux of (x - o)/3 through oriented faces (their share of a solid's volume, additive for one point o,
+// boundary_volume.hpp), and the sum of the faces' shares taken unsigned (the scale of its integration error).
 std::pair<double, double> volume_shares(const std::vector<TopoDS_Shape>& faces, const gp_Pnt& o) {
   double sum = 0.0, scale = 0.0;
   for (const TopoDS_Shape& shape : faces) {
-    const TopoDS_Face& face = TopoDS::Face(shape);
-    BRepGProp_Face surface(face);
-    BRepGProp_Vinert integral;
-    integral.SetLocation(o);
-    if (TopoDS_Iterator(face).More()) {
-      BRepGProp_Domain domain(face);
-      integral.Perform(surface, domain, kShareAccuracy);
-    } else {
-      integral.Perform(surface, kShareAccuracy);
-    }
-    sum += integral.Mass();
-    scale += std::abs(integral.Mass());
+    const double share = face_volume_share(TopoDS::Face(shape), o);
+    sum += share;
+    scale += std::abs(share);
   }
   return {sum, scale};
 }
