@@ -60,4 +60,8 @@ def write_step_assembly(obj, path, report=None, united=False):
             "and %d lenses of beams whose axis runs in the skin but which dip through its inner wall\n"
             % (obj.Label, stats["skin_pieces"], stats["skin_pieces_volume"], obj.Label, path,
                stats["skin_pieces"] - stats["grazing_pieces"], stats["grazing_pieces"]))
+    if stats.get("kept_straddling_faces"):  # faces the kernel could not lay out anew: never silent
+        FreeCAD.Console.PrintWarning(
+            "%s: %d sphere faces in %s keep a loop across their seam (%s); STEP readers may find them invalid\n"
+            % (obj.Label, stats["kept_straddling_faces"], path, stats["kept_straddling_reason"]))
     return stats
