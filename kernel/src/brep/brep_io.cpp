@@ -38,8 +38,8 @@
 #include <sstream>
 
 #include "brep/child_reader.hpp"
-#include "steady/brep/boundary_volume.hpp"
 #include "brep/occ_progress.hpp"
+#include "steady/brep/boundary_volume.hpp"
 #include "steady/core/errors.hpp"
 
 namespace steady {
