@@ -79,7 +79,8 @@ class LatticePart(StatelessProxy):
         shape = Part.Shape()
         shape.importBrepFromString(text)
         obj.Shape = shape
-        # the kernel's adaptive integration: Shape.Volume's fixed Gauss rule is 1e-3 off on crowded spheres
+        # the kernel's integration by Green's theorem on each face: Shape.Volume's fixed Gauss rule is 1e-3 off on
+        # crowded spheres
         obj.Volume = stats.get("volume") or shape.Volume
         obj.FaceCount = len(shape.Faces)
         property_checks.remember_good(obj)
