@@ -48,38 +48,35 @@ void compare(const char* name, const TopoDS_Shape& shape) {
               t_theirs[1] / t_ours[1], theirs / ours - 1.0);
 }
 
+// A skinned assembly's lattice part and the united part compared, and how the lattice and skin parts add up to
+// the united part by each integration.
+void compare_assembly(const std::string& name, const FlatLattice& lattice, const TopoDS_Shape& body, double skin) {
+  TrimOptions apart;
+  apart.skin = skin;
+  apart.unite_skin = false;
+  const TrimResult parts = trim_lattice(lattice, body, apart);
+  TrimOptions united = apart;
+  united.unite_skin = true;
+  const TopoDS_Shape whole = trim_lattice(lattice, body, united).part;
+  compare((name + ": lattice part").c_str(), parts.lattice);
+  compare((name + ": united").c_str(), whole);
+  std::printf("  lattice + skin - united: boundary_volume %.1e, adaptive %.1e (relative)\n",
+              (boundary_volume(parts.lattice) + boundary_volume(parts.skin)) / boundary_volume(whole) - 1.0,
+              (adaptive_volume(parts.lattice) + adaptive_volume(parts.skin)) / adaptive_volume(whole) - 1.0);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const std::string data = STEADY_TEST_DATA;
-  const FlatLattice cubic = flatten(lattice_from_json(test::file_bytes(data + "/cubic_bend_skinned_straddle.json")));
   const TopoDS_Shape cylinder =
       brep_from_text(test::file_bytes(data + "/../../python/data/cylinder.brep"), "body");
-  TrimOptions apart;
-  apart.skin = 0.3;
-  apart.unite_skin = false;
-  const TrimResult parts = trim_lattice(cubic, cylinder, apart);
-  TrimOptions united = apart;
-  united.unite_skin = true;
-  const TopoDS_Shape whole = trim_lattice(cubic, cylinder, united).part;
-  compare("cubic with a bend: lattice part", parts.lattice);
-  compare("cubic with a bend: skin part", parts.skin);
-  compare("cubic with a bend: united", whole);
-  std::printf("  lattice + skin - united: boundary_volume %.1e, adaptive %.1e (relative)\n",
-              (boundary_volume(parts.lattice) + boundary_volume(parts.skin)) / boundary_volume(whole) - 1.0,
-              (adaptive_volume(parts.lattice) + adaptive_volume(parts.skin)) / adaptive_volume(whole) - 1.0);
+  auto lattice = [&](const char* file) { return flatten(lattice_from_json(test::file_bytes(data + "/" + file))); };
+  compare_assembly("cubic with a bend", lattice("cubic_bend_skinned_straddle.json"), cylinder, 0.3);
+  // BCC with a screw: the case where the adaptive rule made the parts seem not to add up (7.9e-6).
+  compare_assembly("BCC with a screw", lattice("bcc_screw_skinned.json"), cylinder, 0.3);
 
-  // BCC with a screw (skin 0.3): the case where the adaptive rule made the parts seem not to add up (7.9e-6).
-  const FlatLattice bcc = flatten(lattice_from_json(test::file_bytes(data + "/bcc_screw_skinned.json")));
-  const TrimResult bcc_parts = trim_lattice(bcc, cylinder, apart);
-  const TopoDS_Shape bcc_whole = trim_lattice(bcc, cylinder, united).part;
-  compare("BCC with a screw: lattice part", bcc_parts.lattice);
-  compare("BCC with a screw: united", bcc_whole);
-  std::printf("  lattice + skin - united: boundary_volume %.1e, adaptive %.1e (relative)\n",
-              (boundary_volume(bcc_parts.lattice) + boundary_volume(bcc_parts.skin)) / boundary_volume(bcc_whole) - 1.0,
-              (adaptive_volume(bcc_parts.lattice) + adaptive_volume(bcc_parts.skin)) / adaptive_volume(bcc_whole) - 1.0);
-
-  const FlatLattice main_job = flatten(lattice_from_json(test::file_bytes(data + "/main_job_octet.json")));
+  const FlatLattice main_job = lattice("main_job_octet.json");
   const TopoDS_Shape box = BRepPrimAPI_MakeBox(gp_Pnt(9.5, 9.5, 5.5), gp_Pnt(30.5, 30.5, 22.5)).Shape();
   compare("main job clipped by a box", trim_lattice(main_job, box, {}).part);
   if (bench::long_run(argc, argv)) {
