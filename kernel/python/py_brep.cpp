@@ -60,11 +60,12 @@ struct Properties {
   double volume = 0.0;
   std::int64_t faces = 0, solids = 0;
   std::string report;
+  double max_edge_tolerance = 0.0;
 };
 
 Properties properties(const TopoDS_Shape& shape) {
   return {steady::is_valid(shape), steady::shape_volume(shape), steady::face_count(shape), steady::solid_count(shape),
-          steady::validity_report(shape)};
+          steady::validity_report(shape), steady::max_edge_tolerance(shape)};
 }
 
 py::dict to_dict(const Properties& p) {
@@ -73,6 +74,7 @@ py::dict to_dict(const Properties& p) {
   d["volume"] = p.volume;
   d["faces"] = p.faces;
   d["solids"] = p.solids;
+  d["max_edge_tolerance"] = p.max_edge_tolerance;
   d["report"] = p.report;
   return d;
 }
@@ -282,7 +284,8 @@ void bind_brep(py::module_& m) {
         // Read in a reader process (the text may come from anywhere), interruptible by Ctrl-C.
         return to_dict(run_interruptible([&] { return properties(steady::read_body_brep(text, "text")); }));
       },
-      py::arg("text"), "{valid, volume, faces, solids, report} of a shape given as BREP text (OpenCASCADE's checks).");
+      py::arg("text"), "{valid, volume, faces, solids, report, max_edge_tolerance} of a shape given as BREP text "
+      "(OpenCASCADE's checks; max_edge_tolerance: how far apart the curves of its loosest edge may be).");
   m.def(
       "read_step",
       [](const std::string& path) {
@@ -308,7 +311,8 @@ void bind_brep(py::module_& m) {
         }
         return out;
       },
-      py::arg("path"), "The parts of a STEP file as read by OpenCASCADE: [{name, color, brep, valid, volume, faces, solids}].");
+      py::arg("path"), "The parts of a STEP file as read by OpenCASCADE: [{name, color, brep, valid, volume, faces, "
+      "solids, report, max_edge_tolerance}].");
 }
 
 }  // namespace steadypy

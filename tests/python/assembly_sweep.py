@@ -3,8 +3,9 @@
 
 Each case writes the STEP assembly (lattice and skin as two parts), reads it back with OpenCASCADE's reader and
 checks that both parts are valid and one solid each, and that their volumes add up to the united part's (brep()
-with the same skin) to 1e-6. `python3 assembly_sweep.py` prints every case (with the lenses split off for the skin
-and the sphere faces rebuilt on a portable frame) and the counts; about 10 minutes. test_brep.py runs three cases.
+with the same skin) to 1e-6. `python3 assembly_sweep.py` prints every case (with the lenses split off for the skin,
+the sphere faces rebuilt on a portable frame and the united part's loosest edge) and the counts; about 10
+minutes. test_brep.py runs three cases.
 """
 import os
 import sys
@@ -28,18 +29,18 @@ def run_case(preset, step, skin, body):
     try:
         lat.write_step(path, body=body, skin=skin, stats=stats)
         parts = sl.read_step(path)
-        united = sl.brep_properties(lat.brep(body, skin=skin))["volume"]
+        united_properties = sl.brep_properties(lat.brep(body, skin=skin))
     except (ValueError, RuntimeError) as error:
         return "error", str(error)[:200], stats
     finally:
         if os.path.exists(path):
             os.remove(path)
-    total = sum(p["volume"] for p in parts)
-    detail = "%s; lenses %d, faces reseated %d (kept %d); sum %.9f, united %.9f (%.1e)" % (
+    total, united = sum(p["volume"] for p in parts), united_properties["volume"]
+    detail = "%s; lenses %d, faces reseated %d (kept %d); sum %.9f, united %.9f (%.1e); loosest edge %.1e" % (
         ", ".join("%s %d solid(s) %s" % (p["name"], p["solids"], "valid" if p["valid"] else "INVALID")
                   for p in parts),
         stats["grazing_pieces"], stats["reseated_sphere_faces"], stats["kept_straddling_faces"], total, united,
-        (total - united) / united)
+        (total - united) / united, united_properties["max_edge_tolerance"])
     if not all(p["valid"] and p["solids"] == 1 for p in parts):
         return "invalid", detail, stats
     if abs(total - united) > SUM_TOLERANCE * united:

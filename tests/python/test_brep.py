@@ -76,6 +76,7 @@ def test_whole_lattice_brep_is_valid_with_exact_volume():
     assert props["valid"], props["report"]
     assert props["solids"] == 1
     assert props["faces"] == lat.ball_count + lat.beam_count
+    assert props["max_edge_tolerance"] == pytest.approx(1e-7)  # the builder's exact edges, no Boolean's
     exact = clipped_volume(lat, -10, 10)
     assert props["volume"] == pytest.approx(exact, rel=1e-7)
 
@@ -102,6 +103,8 @@ def test_skin_and_step_assembly_round_trip(tmp_path):
     assert stats["moved_cuts"] == 0
     assert stats["faces"] == props["faces"]
     assert props["solids"] == 1
+    # The box's inner faces cut the beams square: circles, exact; the Booleans' edges stay at 1e-7.
+    assert props["max_edge_tolerance"] == pytest.approx(1e-7)
     skin_volume = 5.4 ** 3 - 4.8 ** 3
     lattice_volume = clipped_volume(lat, -0.4, 4.4)
     assert props["volume"] == pytest.approx(skin_volume + lattice_volume, rel=1e-7)

@@ -86,7 +86,8 @@ class FaceShare {
     double sum = 0.0;
     for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
       const double a = breaks[k], b = breaks[k + 1];
-      const double reach = c->Value(a).Distance(c->Value(0.5 * (a + b))) + c->Value(b).Distance(c->Value(0.5 * (a + b)));
+      const gp_Pnt2d middle = c->Value(0.5 * (a + b));
+      const double reach = c->Value(a).Distance(middle) + c->Value(b).Distance(middle);
       const int panels = std::clamp(static_cast<int>(std::ceil(reach / kPanel)), 1, 256);
       sum += gauss(a, b, panels, [&](double t) {
         gp_Pnt2d uv;

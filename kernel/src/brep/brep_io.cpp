@@ -17,6 +17,7 @@
 #include <BRep_TEdge.hxx>
 #include <BRep_TFace.hxx>
 #include <BRep_TVertex.hxx>
+#include <BRep_Tool.hxx>
 #include <Geom2d_Circle.hxx>
 #include <Geom2d_Ellipse.hxx>
 #include <Geom2d_Hyperbola.hxx>
@@ -31,8 +32,10 @@
 #include <Geom_TrimmedCurve.hxx>
 #include <Precision.hxx>
 #include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 
+#include <algorithm>
 #include <cmath>
 #include <ios>
 #include <sstream>
@@ -267,5 +270,12 @@ std::int64_t count_subshapes(const TopoDS_Shape& shape, int type) {
 
 std::int64_t face_count(const TopoDS_Shape& shape) { return count_subshapes(shape, TopAbs_FACE); }
 std::int64_t solid_count(const TopoDS_Shape& shape) { return count_subshapes(shape, TopAbs_SOLID); }
+
+double max_edge_tolerance(const TopoDS_Shape& shape) {
+  double largest = 0.0;
+  for (TopExp_Explorer e(shape, TopAbs_EDGE); e.More(); e.Next())
+    largest = std::max(largest, BRep_Tool::Tolerance(TopoDS::Edge(e.Current())));
+  return largest;
+}
 
 }  // namespace steady

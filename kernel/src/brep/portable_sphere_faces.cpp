@@ -142,7 +142,8 @@ std::vector<SampledLoop> sample_loops(const std::vector<std::vector<TopoDS_Edge>
       const Handle(Geom_Curve) c = BRep_Tool::Curve(loop[i], t0, t1);
       if (c.IsNull()) return {};
       const bool reversed = loop[i].Orientation() == TopAbs_REVERSED;
-      const double chord = c->Value(t0).Distance(c->Value(0.5 * (t0 + t1))) + c->Value(t1).Distance(c->Value(0.5 * (t0 + t1)));
+      const gp_Pnt middle = c->Value(0.5 * (t0 + t1));
+      const double chord = c->Value(t0).Distance(middle) + c->Value(t1).Distance(middle);
       const int n = std::clamp(static_cast<int>(std::ceil(chord / radius / 0.01)), 16, 4096);
       for (int k = 0; k <= n; ++k) {
         const double t = reversed ? t1 + (t0 - t1) * k / n : t0 + (t1 - t0) * k / n;

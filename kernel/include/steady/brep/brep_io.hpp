@@ -42,5 +42,8 @@ double shape_volume(const TopoDS_Shape& shape);
 std::int64_t count_subshapes(const TopoDS_Shape& shape, int type);  // type: a TopAbs_ShapeEnum value
 std::int64_t face_count(const TopoDS_Shape& shape);
 std::int64_t solid_count(const TopoDS_Shape& shape);
+// The largest tolerance of the shape's edges: how far apart its curves may be (the builder's own edges: 1e-7;
+// intersection curves of OpenCASCADE's Booleans up to 2e-3 on some trims, docs/brep.md), 0 without edges.
+double max_edge_tolerance(const TopoDS_Shape& shape);
 
 }  // namespace steady
