@@ -242,28 +242,39 @@ Handle(Geom2d_BSplineCurve) pcurve_on(const TopoDS_Edge& edge, const gp_Ax3& fra
                                  approx.Degree());
 }
 
-// Where the point of the sphere in direction `d` lies with respect to the face: its (u, v), taken into the face's
-// own u range (a Boolean's face may run from -2 to 4), classified against the face's (u, v) curves.
-TopAbs_State classify(const TopoDS_Face& face, const gp_Dir& d) {
-  const Handle(Geom_SphericalSurface) sphere = sphere_of(face);
-  const gp_Pnt p = sphere->Location().Translated(gp_Vec(d) * sphere->Radius());
-  double u, v;
-  ElSLib::SphereParameters(sphere->Position(), sphere->Radius(), p, u, v);
-  double umin, umax, vmin, vmax;
-  BRepTools::UVBounds(face, umin, umax, vmin, vmax);
-  u += kTwoPi * std::floor((umin - u) / kTwoPi + 1.0);  // in [umin, umin + 2 pi)
-  if (u - kTwoPi >= umin - 1e-12) u -= kTwoPi;
-  return BRepClass_FaceClassifier(face, gp_Pnt2d(u, v), 1e-9).State();
-}
+// Where the point of the sphere in direction `d` lies with respect to a face: its (u, v), taken into the face's
+// own u range (a Boolean's face may run from -2 to 4), classified against the face's (u, v) curves. The range is
+// found once per face.
+class SphereClassifier {
+ public:
+  explicit SphereClassifier(const TopoDS_Face& face) : face_(face), sphere_(sphere_of(face)) {
+    double umax, vmin, vmax;
+    BRepTools::UVBounds(face, umin_, umax, vmin, vmax);
+  }
+  TopAbs_State at(const gp_Dir& d) const {
+    const gp_Pnt p = sphere_->Location().Translated(gp_Vec(d) * sphere_->Radius());
+    double u, v;
+    ElSLib::SphereParameters(sphere_->Position(), sphere_->Radius(), p, u, v);
+    u += kTwoPi * std::floor((umin_ - u) / kTwoPi + 1.0);  // in [umin, umin + 2 pi)
+    if (u - kTwoPi >= umin_ - 1e-12) u -= kTwoPi;
+    return BRepClass_FaceClassifier(face_, gp_Pnt2d(u, v), 1e-9).State();
+  }
+
+ private:
+  TopoDS_Face face_;
+  Handle(Geom_SphericalSurface) sphere_;
+  double umin_ = 0.0;
+};
 
 // Whether the twin covers the same part of the sphere as the face: the two agree at 256 points spread over the
 // sphere (a point on a boundary, by either, left out).
 bool same_region(const TopoDS_Face& face, const TopoDS_Face& twin) {
   constexpr int kPoints = 256;
+  const SphereClassifier before(face), after(twin);
   for (int k = 0; k < kPoints; ++k) {
     const double z = 1.0 - (2.0 * k + 1.0) / kPoints, r = std::sqrt(1.0 - z * z), a = k * 2.399963229728653;
     const gp_Dir d(r * std::cos(a), r * std::sin(a), z);
-    const TopAbs_State s0 = classify(face, d), s1 = classify(twin, d);
+    const TopAbs_State s0 = before.at(d), s1 = after.at(d);
     if (s0 == TopAbs_ON || s1 == TopAbs_ON) continue;
     if (s0 != s1) return false;
   }
@@ -383,6 +394,12 @@ bool seam_in_face(TopAbs_State south, TopAbs_State north, std::vector<std::pair<
   return false;
 }
 
+// The latitude of point p on the sphere of `frame`.
+double latitude(const gp_Ax3& frame, const gp_Pnt& p) {
+  const gp_Vec at(frame.Location(), p);
+  return std::asin(std::clamp(at.Dot(gp_Vec(frame.Direction())) / at.Magnitude(), -1.0, 1.0));
+}
+
 // The twin of `face` on `frame`, or a null face and why not. Adds the split edges to `splits`.
 TopoDS_Face twin_on(const TopoDS_Face& face, const SeamFrame& fr, const gp_Ax3& frame, double radius,
                     std::vector<std::vector<TopoDS_Edge>> loops, const std::vector<SampledLoop>& samples,
@@ -397,12 +414,12 @@ TopoDS_Face twin_on(const TopoDS_Face& face, const SeamFrame& fr, const gp_Ax3& 
       why_not = "the seam would cross an edge already cut or placed";
       return {};
     }
-    const gp_Vec at(centre, BRep_Tool::Pnt(TopExp::FirstVertex(loops[c.loop].front(), Standard_True)));
-    crossed.emplace_back(std::asin(std::clamp(at.Dot(gp_Vec(frame.Direction())) / at.Magnitude(), -1.0, 1.0)),
-                         c.loop);
+    const TopoDS_Vertex cut = TopExp::FirstVertex(loops[c.loop].front(), Standard_True);
+    crossed.emplace_back(latitude(frame, BRep_Tool::Pnt(cut)), c.loop);
   }
   SeamInFace seam;
-  if (!seam_in_face(classify(face, frame.Direction().Reversed()), classify(face, frame.Direction()), crossed, seam)) {
+  const SphereClassifier in_face(face);
+  if (!seam_in_face(in_face.at(frame.Direction().Reversed()), in_face.at(frame.Direction()), crossed, seam)) {
     why_not = "the poles and the crossed loops do not fit together";
     return {};
   }
@@ -437,8 +454,7 @@ TopoDS_Face twin_on(const TopoDS_Face& face, const SeamFrame& fr, const gp_Ax3& 
     };
     auto loop_start = [&](int l, double& v) {
       const TopoDS_Vertex start = TopExp::FirstVertex(loops[l].front(), Standard_True);
-      const gp_Vec at(centre, BRep_Tool::Pnt(start));
-      v = std::asin(std::clamp(at.Dot(gp_Vec(frame.Direction())) / at.Magnitude(), -1.0, 1.0));
+      v = latitude(frame, BRep_Tool::Pnt(start));
       return start;
     };
     from = seam.lower_loop < 0 ? pole_vertex(v0) : loop_start(seam.lower_loop, v0);
