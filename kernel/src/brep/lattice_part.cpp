@@ -5,6 +5,7 @@
 #include <chrono>
 
 #include "brep/portable_sphere_faces.hpp"
+#include "brep/retraced_edges.hpp"
 #include "steady/brep/brep_builder.hpp"
 #include "steady/brep/brep_io.hpp"
 #include "steady/core/errors.hpp"
@@ -31,6 +32,18 @@ void make_sphere_faces_portable(TrimResult& r) {
     r.part = part_is_lattice ? r.lattice : reshape->Apply(r.part);
   }
   r.stats.reseat_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock).count();
+}
+
+// Edges the Booleans left loose, retraced onto the exact curves their faces meet in, in every shape of the result
+// at once (the parts share faces): a part holding one is defined only to its tolerance (retraced_edges.hpp).
+void retrace_loose_edges_of(TrimResult& r) {
+  const auto clock = std::chrono::steady_clock::now();
+  const RetracedEdges e = retrace_loose_edges({r.part, r.lattice, r.skin});
+  r.stats.loose_edges = e.loose;
+  r.stats.retraced_edges = e.retraced;
+  r.stats.loosest_edge_before = e.loosest_before;
+  r.stats.loosest_edge_after = e.loosest_after;
+  r.stats.retrace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock).count();
 }
 
 TrimResult make_trimmed_or_whole_part(const FlatLattice& lattice, const LatticePartRequest& request,
@@ -60,6 +73,7 @@ TrimResult make_trimmed_or_whole_part(const FlatLattice& lattice, const LatticeP
 
 TrimResult make_part(const FlatLattice& lattice, const LatticePartRequest& request, Progress& progress) {
   TrimResult out = make_trimmed_or_whole_part(lattice, request, progress);
+  retrace_loose_edges_of(out);
   make_sphere_faces_portable(out);
   return out;
 }

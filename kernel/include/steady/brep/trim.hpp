@@ -90,6 +90,11 @@ struct TrimStats {
   std::int64_t reseated_sphere_faces = 0, kept_straddling_faces = 0;
   std::string kept_straddling_reason;
   double reseat_seconds = 0.0;
+  // Edges a Boolean left loose (tolerance above 2e-7: walking-line approximations of where two quadrics
+  // meet),
+  // retraced onto the exact curve (retraced_edges.hpp); the loosest edge of those before and after.
+  std::int64_t loose_edges = 0, retraced_edges = 0;
+  double loosest_edge_before = 0.0, loosest_edge_after = 0.0, retrace_seconds = 0.0;
   bool relaid_out = false;                // the first attempt failed as a whole; a later one (every cut halfway,
                                           // or the spheres laid out the other way) made the part
   std::string relaid_reason;              //   why the earlier attempts failed

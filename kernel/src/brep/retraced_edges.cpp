@@ -1,0 +1,555 @@
+#include "brep/retraced_edges.hpp"
+
+#include <BRepAdaptor_Curve.hxx>
+#include <BRepCheck_Analyzer.hxx>
+#include <BRepAdaptor_Surface.hxx>
+#include <BRep_Builder.hxx>
+#include <BRep_TEdge.hxx>
+#include <BRep_TVertex.hxx>
+#include <BRep_Tool.hxx>
+#include <ElSLib.hxx>
+#include <Geom2dAPI_Interpolate.hxx>
+#include <Geom2d_BSplineCurve.hxx>
+#include <GeomAPI_Interpolate.hxx>
+#include <GeomAdaptor_Curve.hxx>
+#include <Geom_Curve.hxx>
+#include <Standard_Failure.hxx>
+#include <TColStd_HArray1OfReal.hxx>
+#include <TColgp_HArray1OfPnt.hxx>
+#include <TColgp_HArray1OfPnt2d.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
+#include <TopoDS_Edge.hxx>
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Vertex.hxx>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <vector>
+
+namespace steady {
+
+namespace {
+
+constexpr double kTwoPi = 2.0 * M_PI;
+// Surfaces meeting at less than this angle (its sine) leave the curve ill-conditioned: such an edge is left alone.
+constexpr double kMinCrossingSine = 1e-3;
+// Points within this angle (its cosine) of a sphere's pole have no stable u.
+constexpr double kMinPoleCosine = 0.02;
+// How far the new curves may stray from the surfaces and from each other: a ball of radius 0.1 cut by a wall then
+// has its volume to 3e-9 (RetracedEdges tests); 1e-10 would make the main job's STEP 11 % larger and take 10 times
+// as long. The edge's tolerance is max(1e-7, twice what they stray).
+constexpr double kTargetDeviation = 1e-8;
+constexpr int kFirstSamples = 16, kMostSamples = 2048;
+
+// A plane, sphere, cylinder or cone as the zero set of a function that is the signed distance near the surface,
+// with its (u, v) parameters and points (in the coordinates of the shape, the face's location applied).
+struct ImplicitSurface {
+  GeomAbs_SurfaceType type = GeomAbs_OtherSurface;
+  gp_Pln plane;
+  gp_Sphere sphere;
+  gp_Cylinder cylinder;
+  gp_Cone cone;
+
+  double value(const gp_XYZ& x, gp_XYZ& gradient) const {
+    switch (type) {
+      case GeomAbs_Plane: {
+        gradient = plane.Axis().Direction().XYZ();
+        return gradient.Dot(x - plane.Location().XYZ());
+      }
+      case GeomAbs_Sphere: {
+        const gp_XYZ d = x - sphere.Location().XYZ();
+        const double r = d.Modulus();
+        gradient = r > 0.0 ? d / r : gp_XYZ(1.0, 0.0, 0.0);
+        return r - sphere.Radius();
+      }
+      case GeomAbs_Cylinder: {
+        const gp_XYZ a = cylinder.Axis().Direction().XYZ(), w = x - cylinder.Location().XYZ();
+        const gp_XYZ radial = w - a * w.Dot(a);
+        const double rho = radial.Modulus();
+        gradient = rho > 0.0 ? radial / rho : gp_XYZ(cylinder.XAxis().Direction().XYZ());
+        return rho - cylinder.Radius();
+      }
+      default: {  // the cone: its points are at distance R + h tan(alpha) from the axis, h along it from Location
+        const gp_XYZ a = cone.Axis().Direction().XYZ(), w = x - cone.Location().XYZ();
+        const double h = w.Dot(a), c = std::cos(cone.SemiAngle()), s = std::sin(cone.SemiAngle());
+        const gp_XYZ radial = w - a * h;
+        const double rho = radial.Modulus();
+        const gp_XYZ out = rho > 0.0 ? radial / rho : gp_XYZ(cone.XAxis().Direction().XYZ());
+        gradient = out * c - a * s;
+        return (rho - cone.RefRadius()) * c - h * s;
+      }
+    }
+  }
+
+  gp_Pnt2d parameters(const gp_Pnt& p) const {
+    double u = 0.0, v = 0.0;
+    switch (type) {
+      case GeomAbs_Plane: ElSLib::Parameters(plane, p, u, v); break;
+      case GeomAbs_Sphere: ElSLib::Parameters(sphere, p, u, v); break;
+      case GeomAbs_Cylinder: ElSLib::Parameters(cylinder, p, u, v); break;
+      default: ElSLib::Parameters(cone, p, u, v); break;
+    }
+    return gp_Pnt2d(u, v);
+  }
+
+  gp_Pnt point(const gp_Pnt2d& uv) const {
+    switch (type) {
+      case GeomAbs_Plane: return ElSLib::Value(uv.X(), uv.Y(), plane);
+      case GeomAbs_Sphere: return ElSLib::Value(uv.X(), uv.Y(), sphere);
+      case GeomAbs_Cylinder: return ElSLib::Value(uv.X(), uv.Y(), cylinder);
+      default: return ElSLib::Value(uv.X(), uv.Y(), cone);
+    }
+  }
+
+  bool u_periodic() const { return type != GeomAbs_Plane; }
+};
+
+std::optional<ImplicitSurface> implicit_surface(const TopoDS_Face& face) {
+  const BRepAdaptor_Surface adaptor(face, Standard_False);
+  ImplicitSurface s;
+  s.type = adaptor.GetType();
+  switch (s.type) {
+    case GeomAbs_Plane: s.plane = adaptor.Plane(); break;
+    case GeomAbs_Sphere: s.sphere = adaptor.Sphere(); break;
+    case GeomAbs_Cylinder: s.cylinder = adaptor.Cylinder(); break;
+    case GeomAbs_Cone: s.cone = adaptor.Cone(); break;
+    default: return std::nullopt;
+  }
+  return s;
+}
+
+// Newton steps of least length onto both surfaces (each step solves the two linearised equations with the
+// smallest move, which is across the curve); false where the surfaces meet nearly tangentially or it does not
+// converge.
+bool pull_onto_both(const ImplicitSurface& a, const ImplicitSurface& b, gp_XYZ& x) {
+  const double scale = std::max(1.0, x.Modulus());
+  for (int step = 0; step < 40; ++step) {
+    gp_XYZ ga, gb;
+    const double fa = a.value(x, ga), fb = b.value(x, gb);
+    if (std::abs(fa) < 1e-14 * scale && std::abs(fb) < 1e-14 * scale) return true;
+    const double aa = ga.Dot(ga), ab = ga.Dot(gb), bb = gb.Dot(gb), det = aa * bb - ab * ab;
+    if (det < kMinCrossingSine * kMinCrossingSine * aa * bb) return false;
+    const double la = (bb * fa - ab * fb) / det, lb = (aa * fb - ab * fa) / det;
+    const gp_XYZ move = ga * la + gb * lb;
+    x -= move;
+    if (move.Modulus() < 1e-15 * scale) break;
+  }
+  gp_XYZ g;
+  return std::abs(a.value(x, g)) < 1e-11 * scale && std::abs(b.value(x, g)) < 1e-11 * scale;
+}
+
+// One of the edge's faces: its surface and the edge's current (u, v) curve on it (which picks the period).
+struct Side {
+  TopoDS_Face face;
+  ImplicitSurface surface;
+  Handle(Geom2d_Curve) old_pcurve;
+};
+
+// All faces along the edge (two in a solid; more where parts share faces), on two distinct surfaces: `a` and `b`
+// index one face on each, the surfaces the points are pulled onto.
+struct Sides {
+  std::vector<Side> faces;
+  std::size_t a = 0, b = 1;
+};
+
+struct Trace {
+  Handle(Geom_Curve) curve;  // null where the edge's own curve (a conic) is kept
+  std::vector<Handle(Geom2d_BSplineCurve)> pcurves;  // one per face
+  double deviation = 0.0;
+};
+
+// (u, v) of a point on the side's surface, u in the period nearest `u_near`; false near a sphere's pole.
+bool side_parameters(const Side& side, const gp_Pnt& p, double u_near, gp_Pnt2d& uv) {
+  uv = side.surface.parameters(p);
+  if (side.surface.type == GeomAbs_Sphere && std::cos(uv.Y()) < kMinPoleCosine) return false;
+  if (side.surface.u_periodic()) uv.SetX(uv.X() + kTwoPi * std::round((u_near - uv.X()) / kTwoPi));
+  return true;
+}
+
+// The samples' (u, v) on a face: the period of u taken from the old (u, v) curve's start, then followed from
+// sample to sample (near a seam the old curve, 1e-4 off, could pick the other side); false when the end does not
+// come back to the old curve's end (in the other period, the face's loop would not close).
+bool face_parameters(const Side& side, const TColgp_HArray1OfPnt& points, const std::vector<double>& old_t,
+                     TColgp_HArray1OfPnt2d& uvs) {
+  const int n = points.Length();
+  const bool old = !side.old_pcurve.IsNull();
+  double u_near = old ? side.old_pcurve->Value(old_t.front()).X() : side.surface.parameters(points(1)).X();
+  for (int i = 1; i <= n; ++i) {
+    gp_Pnt2d uv;
+    if (!side_parameters(side, points(i), u_near, uv)) return false;
+    uvs(i) = uv;
+    u_near = uv.X();
+  }
+  return !old || std::abs(uvs(n).X() - side.old_pcurve->Value(old_t.back()).X()) < 0.5;
+}
+
+// How far the new curves stray, in each interval between samples: from each surface, and the (u, v) curves'
+// points from the 3D curve's, at the samples and three points between.
+std::vector<double> interval_deviations(const Trace& trace, const Adaptor3d_Curve& curve, const Sides& sides,
+                                        const TColStd_Array1OfReal& params) {
+  std::vector<double> worst(params.Length() - 1, 0.0);
+  for (int i = params.Lower(); i < params.Upper(); ++i)
+    for (int q = 0; q <= 4; ++q) {
+      const double t = params(i) + (params(i + 1) - params(i)) * q / 4.0;
+      const gp_Pnt p = curve.Value(t);
+      double& w = worst[i - params.Lower()];
+      for (std::size_t k = 0; k < sides.faces.size(); ++k) {
+        gp_XYZ g;
+        w = std::max(w, std::abs(sides.faces[k].surface.value(p.XYZ(), g)));
+        w = std::max(w, sides.faces[k].surface.point(trace.pcurves[k]->Value(t)).Distance(p));
+      }
+    }
+  return worst;
+}
+
+// Parameters of the old curve at n + 1 points evenly spaced along it (by the chords of a dense sampling): a
+// walking line's parameter can run very unevenly.
+std::vector<double> even_parameters(const Adaptor3d_Curve& curve, double first, double last, int n) {
+  const int m = std::max(256, 4 * n);
+  std::vector<double> length(m + 1, 0.0);
+  gp_Pnt previous = curve.Value(first);
+  for (int j = 1; j <= m; ++j) {
+    const gp_Pnt p = curve.Value(first + (last - first) * j / m);
+    length[j] = length[j - 1] + p.Distance(previous);
+    previous = p;
+  }
+  std::vector<double> t(n + 1);
+  int j = 0;
+  for (int i = 0; i <= n; ++i) {
+    const double target = length[m] * i / n;
+    while (j < m - 1 && length[j + 1] < target) ++j;
+    const double piece = length[j + 1] - length[j];
+    const double f = piece > 0.0 ? std::clamp((target - length[j]) / piece, 0.0, 1.0) : 0.0;
+    t[i] = first + (last - first) * (j + f) / m;
+  }
+  t.front() = first;
+  t.back() = last;
+  return t;
+}
+
+// The (u, v) velocity on the side's surface that moves its point at `uv` with the 3D velocity `v` (tangent to it).
+gp_Vec2d surface_velocity(const ImplicitSurface& surface, const gp_Pnt2d& uv, const gp_Vec& v) {
+  gp_Pnt p;
+  gp_Vec su, sv;
+  switch (surface.type) {
+    case GeomAbs_Plane: ElSLib::D1(uv.X(), uv.Y(), surface.plane, p, su, sv); break;
+    case GeomAbs_Sphere: ElSLib::D1(uv.X(), uv.Y(), surface.sphere, p, su, sv); break;
+    case GeomAbs_Cylinder: ElSLib::D1(uv.X(), uv.Y(), surface.cylinder, p, su, sv); break;
+    default: ElSLib::D1(uv.X(), uv.Y(), surface.cone, p, su, sv); break;
+  }
+  const double uu = su.Dot(su), uv_ = su.Dot(sv), vv = sv.Dot(sv), det = uu * vv - uv_ * uv_;
+  const double bu = su.Dot(v), bv = sv.Dot(v);
+  return gp_Vec2d((vv * bu - uv_ * bv) / det, (uu * bv - uv_ * bu) / det);
+}
+
+// Points of the exact curve, their parameters on the new curves, the curve's velocity at both ends, and their
+// (u, v) on each face.
+struct Samples {
+  Handle(TColgp_HArray1OfPnt) points;
+  Handle(TColStd_HArray1OfReal) params;
+  gp_Vec start_velocity, end_velocity;
+  std::vector<Handle(TColgp_HArray1OfPnt2d)> uvs;
+};
+
+// The exact curve's velocity at a point: along the normals' cross product, pointing to `ahead`, at `speed`.
+gp_Vec exact_velocity(const Sides& sides, const gp_Pnt& p, const gp_Vec& ahead, double speed) {
+  gp_XYZ ga, gb;
+  sides.faces[sides.a].surface.value(p.XYZ(), ga);
+  sides.faces[sides.b].surface.value(p.XYZ(), gb);
+  gp_Vec along(ga.Crossed(gb));
+  if (along.Dot(ahead) < 0.0) along.Reverse();
+  return along.Normalized() * speed;
+}
+
+// The exact curve at the old curve's parameters `old_t`. A conic (a circle where a plane or a cone meets a sphere,
+// an ellipse where a plane meets a cylinder) is exact already: its own points, parameters and derivatives.
+// Otherwise the old curve's points (at its ends, its vertices) pulled onto the curve, the chord length as parameter
+// (scaled to the edge's range), and the velocities along the curve at that speed.
+std::optional<Samples> sample_exact_curve(const TopoDS_Edge& edge, const Sides& sides, bool conic,
+                                          const std::vector<double>& old_t) {
+  const int n = static_cast<int>(old_t.size()) - 1;
+  double first = 0.0, last = 0.0;
+  BRep_Tool::Range(edge, first, last);
+  const BRepAdaptor_Curve old_curve(edge);
+  TopoDS_Vertex v_first, v_last;
+  TopExp::Vertices(edge, v_first, v_last);
+  Samples out{new TColgp_HArray1OfPnt(1, n + 1), new TColStd_HArray1OfReal(1, n + 1), {}, {}, {}};
+  std::vector<double> chord(n + 1, 0.0);
+  for (int i = 0; i <= n; ++i) {
+    gp_XYZ x = conic                            ? old_curve.Value(old_t[i]).XYZ()
+               : i == 0 && !v_first.IsNull() ? BRep_Tool::Pnt(v_first).XYZ()
+               : i == n && !v_last.IsNull()  ? BRep_Tool::Pnt(v_last).XYZ()
+                                             : old_curve.Value(old_t[i]).XYZ();
+    if (!conic && !pull_onto_both(sides.faces[sides.a].surface, sides.faces[sides.b].surface, x))
+      return std::nullopt;
+    out.points->SetValue(i + 1, gp_Pnt(x));
+    if (i > 0) chord[i] = chord[i - 1] + out.points->Value(i + 1).Distance(out.points->Value(i));
+    out.params->SetValue(i + 1, old_t[i]);
+  }
+  if (!(chord[n] > 0.0)) return std::nullopt;
+  if (conic) {
+    out.start_velocity = old_curve.DN(first, 1);
+    out.end_velocity = old_curve.DN(last, 1);
+  } else {
+    for (int i = 1; i < n; ++i) out.params->SetValue(i + 1, first + (last - first) * chord[i] / chord[n]);
+    out.params->SetValue(1, first);
+    out.params->SetValue(n + 1, last);
+    const double speed = chord[n] / (last - first);
+    out.start_velocity = exact_velocity(sides, out.points->Value(1),
+                                        gp_Vec(out.points->Value(1), out.points->Value(2)), speed);
+    out.end_velocity = exact_velocity(sides, out.points->Value(n + 1),
+                                      gp_Vec(out.points->Value(n), out.points->Value(n + 1)), speed);
+  }
+  for (std::size_t k = 0; k < sides.faces.size(); ++k) {
+    out.uvs.push_back(new TColgp_HArray1OfPnt2d(1, n + 1));
+    if (!face_parameters(sides.faces[k], *out.points, old_t, *out.uvs[k])) return std::nullopt;
+  }
+  return out;
+}
+
+// Cubic splines through the samples of the exact curve at the old curve's parameters `old_t`, with the curve's
+// velocity at both ends (a conic keeps its own 3D curve), and how far they stray between each two samples.
+std::optional<Trace> trace_through(const TopoDS_Edge& edge, const Sides& sides, bool conic,
+                                   const std::vector<double>& old_t, std::vector<double>& deviations) {
+  const std::optional<Samples> samples = sample_exact_curve(edge, sides, conic, old_t);
+  if (!samples) return std::nullopt;
+  const int count = samples->points->Length();
+  Trace trace;
+  if (!conic) {
+    double spacing = samples->points->Value(1).Distance(samples->points->Value(2));
+    for (int i = 2; i < count; ++i)
+      spacing = std::min(spacing, samples->points->Value(i).Distance(samples->points->Value(i + 1)));
+    GeomAPI_Interpolate curve(samples->points, samples->params, Standard_False, std::min(1e-12, 0.01 * spacing));
+    curve.Load(samples->start_velocity, samples->end_velocity, Standard_False);
+    curve.Perform();
+    if (!curve.IsDone()) return std::nullopt;
+    trace.curve = curve.Curve();
+  }
+  for (std::size_t k = 0; k < sides.faces.size(); ++k) {
+    const Handle(TColgp_HArray1OfPnt2d)& uvs = samples->uvs[k];
+    Geom2dAPI_Interpolate pcurve(uvs, samples->params, Standard_False, 1e-14);
+    pcurve.Load(surface_velocity(sides.faces[k].surface, uvs->Value(1), samples->start_velocity),
+                surface_velocity(sides.faces[k].surface, uvs->Value(count), samples->end_velocity), Standard_False);
+    pcurve.Perform();
+    if (!pcurve.IsDone()) return std::nullopt;
+    trace.pcurves.push_back(pcurve.Curve());
+  }
+  double first = 0.0, last = 0.0;
+  BRep_Tool::Range(edge, first, last);
+  deviations = conic ? interval_deviations(trace, BRepAdaptor_Curve(edge), sides, samples->params->Array1())
+                     : interval_deviations(trace, GeomAdaptor_Curve(trace.curve, first, last), sides,
+                                           samples->params->Array1());
+  trace.deviation = *std::max_element(deviations.begin(), deviations.end());
+  return trace;
+}
+
+// The edge's faces as sides it can be retraced between, or nothing: a seam, a face of another kind, an edge that
+// is not same-parameter, or faces that are not on exactly two surfaces crossing each other.
+std::optional<Sides> retraceable_sides(const TopoDS_Edge& edge, const TopTools_ListOfShape& faces) {
+  if (BRep_Tool::Degenerated(edge) || !BRep_Tool::SameParameter(edge) || !BRep_Tool::SameRange(edge) ||
+      faces.Extent() < 2)
+    return std::nullopt;
+  Sides sides;
+  for (const TopoDS_Shape& f : faces) {
+    const TopoDS_Face face = TopoDS::Face(f);
+    if (BRep_Tool::IsClosed(edge, face)) return std::nullopt;
+    const std::optional<ImplicitSurface> surface = implicit_surface(face);
+    if (!surface) return std::nullopt;
+    double a = 0.0, b = 0.0;
+    sides.faces.push_back({face, *surface, BRep_Tool::CurveOnSurface(edge, face, a, b)});
+  }
+  // The pair of faces whose normals cross most at the edge's middle; the others must lie on one of their surfaces.
+  double first = 0.0, last = 0.0;
+  BRep_Tool::Range(edge, first, last);
+  const gp_XYZ middle = BRepAdaptor_Curve(edge).Value(0.5 * (first + last)).XYZ();
+  std::vector<gp_XYZ> normals(sides.faces.size());
+  for (std::size_t k = 0; k < sides.faces.size(); ++k) sides.faces[k].surface.value(middle, normals[k]);
+  double crossing = 0.0;
+  for (std::size_t i = 0; i < normals.size(); ++i)
+    for (std::size_t k = i + 1; k < normals.size(); ++k) {
+      const double sine = normals[i].Crossed(normals[k]).Modulus();
+      if (sine > crossing) {
+        crossing = sine;
+        sides.a = i;
+        sides.b = k;
+      }
+    }
+  if (crossing < kMinCrossingSine) return std::nullopt;
+  return sides;
+}
+
+// The tolerance a vertex needs: the distance from its point to the ends of every curve of its edges, and at least
+// their tolerances.
+double vertex_tolerance_needed(const TopoDS_Vertex& vertex, const TopTools_ListOfShape& edges,
+                               const TopTools_IndexedDataMapOfShapeListOfShape& edge_faces) {
+  const gp_Pnt p = BRep_Tool::Pnt(vertex);
+  double needed = 1e-7;
+  for (const TopoDS_Shape& e : edges) {
+    const TopoDS_Edge& edge = TopoDS::Edge(e);
+    if (BRep_Tool::Degenerated(edge)) {
+      needed = std::max(needed, BRep_Tool::Tolerance(edge));
+      continue;
+    }
+    needed = std::max(needed, BRep_Tool::Tolerance(edge));
+    const double t = BRep_Tool::Parameter(vertex, edge);
+    needed = std::max(needed, 1.1 * BRepAdaptor_Curve(edge).Value(t).Distance(p));
+    const int index = edge_faces.FindIndex(edge);
+    if (index == 0) continue;
+    for (const TopoDS_Shape& f : edge_faces(index)) {
+      const BRepAdaptor_Curve on_face(edge, TopoDS::Face(f));
+      needed = std::max(needed, 1.1 * on_face.Value(t).Distance(p));
+    }
+  }
+  return needed;
+}
+
+// Replaces the edge's curves by the trace's and sets its tolerance.
+void apply_trace(const TopoDS_Edge& edge, const Sides& sides, const Trace& trace, double tolerance) {
+  BRep_Builder builder;
+  if (!trace.curve.IsNull()) builder.UpdateEdge(edge, trace.curve, TopLoc_Location(), tolerance);
+  for (std::size_t k = 0; k < sides.faces.size(); ++k)
+    builder.UpdateEdge(edge, trace.pcurves[k], sides.faces[k].face, tolerance);
+  Handle(BRep_TEdge)::DownCast(edge.TShape())->Tolerance(tolerance);
+  edge.TShape()->Modified(Standard_True);
+}
+
+// An edge's curves and tolerances and those of its vertices, to put back when its faces come out invalid.
+struct SavedEdge {
+  Handle(Geom_Curve) curve;
+  TopLoc_Location location;
+  std::vector<Handle(Geom2d_Curve)> pcurves;
+  double tolerance = 0.0;
+  std::vector<std::pair<TopoDS_Vertex, double>> vertices;
+};
+
+SavedEdge save_edge(const TopoDS_Edge& edge, const Sides& sides) {
+  SavedEdge saved;
+  double first = 0.0, last = 0.0;
+  saved.curve = BRep_Tool::Curve(edge, saved.location, first, last);
+  for (const Side& side : sides.faces) saved.pcurves.push_back(BRep_Tool::CurveOnSurface(edge, side.face, first, last));
+  saved.tolerance = BRep_Tool::Tolerance(edge);
+  for (TopExp_Explorer v(edge, TopAbs_VERTEX); v.More(); v.Next())
+    saved.vertices.emplace_back(TopoDS::Vertex(v.Current()), BRep_Tool::Tolerance(TopoDS::Vertex(v.Current())));
+  return saved;
+}
+
+void restore_edge(const TopoDS_Edge& edge, const Sides& sides, const SavedEdge& saved) {
+  BRep_Builder builder;
+  builder.UpdateEdge(edge, saved.curve, saved.location, saved.tolerance);
+  for (std::size_t k = 0; k < sides.faces.size(); ++k)
+    builder.UpdateEdge(edge, saved.pcurves[k], sides.faces[k].face, saved.tolerance);
+  Handle(BRep_TEdge)::DownCast(edge.TShape())->Tolerance(saved.tolerance);
+  for (const auto& [vertex, tolerance] : saved.vertices)
+    Handle(BRep_TVertex)::DownCast(vertex.TShape())->Tolerance(tolerance);
+  edge.TShape()->Modified(Standard_True);
+}
+
+// The edge's vertices given the tolerance their edges need now.
+void fit_vertex_tolerances(const TopoDS_Edge& edge, const TopTools_IndexedDataMapOfShapeListOfShape& vertex_edges,
+                           const TopTools_IndexedDataMapOfShapeListOfShape& edge_faces) {
+  for (TopExp_Explorer v(edge, TopAbs_VERTEX); v.More(); v.Next()) {
+    const TopoDS_Vertex& vertex = TopoDS::Vertex(v.Current());
+    const double needed = vertex_tolerance_needed(vertex, vertex_edges.FindFromKey(vertex), edge_faces);
+    if (needed < BRep_Tool::Tolerance(vertex)) Handle(BRep_TVertex)::DownCast(vertex.TShape())->Tolerance(needed);
+  }
+}
+
+// The best trace of an edge: from samples evenly spaced along it, each interval whose curves stray more than the
+// target split in two (in the old curve's parameter), until all come within it or the samples run out.
+std::optional<Trace> best_trace(const TopoDS_Edge& edge, const Sides& sides) {
+  const BRepAdaptor_Curve old_curve(edge);
+  const GeomAbs_CurveType kind = old_curve.GetType();
+  const bool conic = kind == GeomAbs_Line || kind == GeomAbs_Circle || kind == GeomAbs_Ellipse;
+  double first = 0.0, last = 0.0;
+  BRep_Tool::Range(edge, first, last);
+  std::vector<double> old_t = even_parameters(old_curve, first, last, kFirstSamples);
+  if (conic)
+    for (int i = 0; i <= kFirstSamples; ++i) old_t[i] = first + (last - first) * i / kFirstSamples;
+  std::optional<Trace> best;
+  for (;;) {
+    std::vector<double> deviations;
+    std::optional<Trace> trace = trace_through(edge, sides, conic, old_t, deviations);
+    if (!trace) return best;
+    if (!best || trace->deviation < best->deviation) best = trace;
+    if (best->deviation <= kTargetDeviation) break;
+    std::vector<double> refined = {old_t.front()};
+    for (std::size_t i = 0; i + 1 < old_t.size(); ++i) {
+      if (deviations[i] > kTargetDeviation) refined.push_back(0.5 * (old_t[i] + old_t[i + 1]));
+      refined.push_back(old_t[i + 1]);
+    }
+    if (refined.size() > static_cast<std::size_t>(kMostSamples)) break;
+    old_t = std::move(refined);
+  }
+  return best;
+}
+
+}  // namespace
+
+RetracedEdges retrace_loose_edges(const std::vector<TopoDS_Shape>& shapes) {
+  RetracedEdges out;
+  // One map over all shapes: an edge shared by two parts gets (u, v) curves on the faces of both.
+  TopoDS_Compound all;
+  BRep_Builder builder;
+  builder.MakeCompound(all);
+  for (const TopoDS_Shape& shape : shapes)
+    if (!shape.IsNull()) builder.Add(all, shape);
+  TopTools_IndexedDataMapOfShapeListOfShape edge_faces, vertex_edges;
+  TopExp::MapShapesAndUniqueAncestors(all, TopAbs_EDGE, TopAbs_FACE, edge_faces);
+  TopExp::MapShapesAndUniqueAncestors(all, TopAbs_VERTEX, TopAbs_EDGE, vertex_edges);
+  struct Applied {
+    TopoDS_Edge edge;
+    Sides sides;
+    SavedEdge saved;
+  };
+  std::vector<Applied> applied;
+  std::vector<TopoDS_Edge> loose;
+  // Every face along a retraced edge, and whether BRepCheck found it valid before any of its edges changed (a
+  // face's check costs as much as its edges: the skin's inner wall holds thousands).
+  TopTools_IndexedMapOfShape faces;
+  std::vector<bool> valid_before;
+  for (int i = 1; i <= edge_faces.Extent(); ++i) {
+    const TopoDS_Edge& edge = TopoDS::Edge(edge_faces.FindKey(i));
+    const double tolerance = BRep_Tool::Tolerance(edge);
+    if (tolerance <= kLooseEdgeTolerance) continue;
+    const std::optional<Sides> sides = retraceable_sides(edge, edge_faces(i));
+    if (!sides) continue;
+    loose.push_back(edge);
+    out.loosest_before = std::max(out.loosest_before, tolerance);
+    std::optional<Trace> trace;
+    try {
+      trace = best_trace(edge, *sides);
+    } catch (const Standard_Failure&) {
+      trace.reset();
+    }
+    const double new_tolerance = trace ? std::max(1e-7, 2.0 * trace->deviation) : tolerance;
+    if (new_tolerance >= 0.5 * tolerance) continue;
+    for (const Side& side : sides->faces)
+      if (faces.Add(side.face) > static_cast<int>(valid_before.size()))
+        valid_before.push_back(BRepCheck_Analyzer(side.face).IsValid());
+    applied.push_back({edge, *sides, save_edge(edge, *sides)});
+    apply_trace(edge, *sides, *trace, new_tolerance);
+    fit_vertex_tolerances(edge, vertex_edges, edge_faces);
+  }
+  // The new curves stay only where every face along them that was valid still is (a face whose loop ends at a
+  // sphere's pole can come out self-intersecting); otherwise all edges of such a face get their old curves back.
+  std::vector<bool> revert(applied.size(), false);
+  for (int f = 1; f <= faces.Extent(); ++f) {
+    if (!valid_before[f - 1] || BRepCheck_Analyzer(faces(f)).IsValid()) continue;
+    for (std::size_t k = 0; k < applied.size(); ++k)
+      for (const Side& side : applied[k].sides.faces) revert[k] = revert[k] || side.face.IsSame(faces(f));
+  }
+  for (std::size_t k = applied.size(); k-- > 0;)
+    if (revert[k]) restore_edge(applied[k].edge, applied[k].sides, applied[k].saved);
+  out.loose = static_cast<std::int64_t>(loose.size());
+  out.retraced = static_cast<std::int64_t>(std::count(revert.begin(), revert.end(), false));
+  for (const TopoDS_Edge& edge : loose) out.loosest_after = std::max(out.loosest_after, BRep_Tool::Tolerance(edge));
+  return out;
+}
+
+}  // namespace steady
