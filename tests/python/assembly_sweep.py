@@ -36,6 +36,8 @@ def run_case(preset, step, skin, body):
         if os.path.exists(path):
             os.remove(path)
     total, united = sum(p["volume"] for p in parts), united_properties["volume"]
+    stats["sum_relative"] = (total - united) / united
+    stats["united_loosest_edge"] = united_properties["max_edge_tolerance"]
     detail = "%s; lenses %d, faces reseated %d (kept %d); sum %.9f, united %.9f (%.1e); loosest edge %.1e" % (
         ", ".join("%s %d solid(s) %s" % (p["name"], p["solids"], "valid" if p["valid"] else "INVALID")
                   for p in parts),

@@ -40,10 +40,10 @@ constexpr double kTwoPi = 2.0 * M_PI;
 // Surfaces meeting at less than this angle (its sine) leave the curve ill-conditioned: such an edge is left alone.
 constexpr double kMinCrossingSine = 1e-3;
 // Points within this angle (its cosine) of a sphere's pole have no stable u.
-constexpr double kMinPoleCosine = 0.02;
+constexpr double kMinPoleCosine = 1e-3;
 // How far the new curves may stray from the surfaces and from each other: a ball of radius 0.1 cut by a wall then
-// has its volume to 3e-9 (RetracedEdges tests); 1e-10 would make the main job's STEP 11 % larger and take 10 times
-// as long. The edge's tolerance is max(1e-7, twice what they stray).
+// has its volume to 3e-9 (RetracedEdges tests); 1e-10 would make the main job's STEP 11 % larger. The edge's
+// tolerance is max(1e-7, twice what they stray).
 constexpr double kTargetDeviation = 1e-8;
 constexpr int kFirstSamples = 16, kMostSamples = 2048;
 
