@@ -45,7 +45,7 @@ constexpr double kMinPoleCosine = 1e-3;
 // has its volume to 3e-9 (RetracedEdges tests); 1e-10 would make the main job's STEP 11 % larger. The edge's
 // tolerance is max(1e-7, twice what they stray).
 constexpr double kTargetDeviation = 1e-8;
-constexpr int kFirstSamples = 16, kMostSamples = 2048;
+constexpr int kFirstSamples = 16, kMostSamples = 2048, kMostRounds = 30;
 
 // A plane, sphere, cylinder or cone as the zero set of a function that is the signed distance near the surface,
 // with its (u, v) parameters and points (in the coordinates of the shape, the face's location applied).
@@ -267,29 +267,73 @@ gp_Vec exact_velocity(const Sides& sides, const gp_Pnt& p, const gp_Vec& ahead, 
   return along.Normalized() * speed;
 }
 
-// The exact curve at the old curve's parameters `old_t`. A conic (a circle where a plane or a cone meets a sphere,
+// Drops samples that the pull left behind the one before: the old curve strays along the exact one too (up to
+// its tolerance), so near a vertex, or where the old parameter runs fast, a pulled point can land behind its
+// predecessor, and the spline through them would turn back (a loop a checker finds self-intersecting). Each kept
+// point lies ahead of the one kept before it along the curve at both (in the old curve's sense); the last, the
+// vertex, is always kept, and points before it are dropped until it is ahead.
+void keep_samples_in_order(const Sides& sides, const Adaptor3d_Curve& old_curve, std::vector<gp_Pnt>& points,
+                           std::vector<double>& old_t) {
+  std::vector<gp_Vec> along(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    gp_XYZ ga, gb;
+    sides.faces[sides.a].surface.value(points[i].XYZ(), ga);
+    sides.faces[sides.b].surface.value(points[i].XYZ(), gb);
+    along[i] = gp_Vec(ga.Crossed(gb));
+    if (along[i].Dot(old_curve.DN(old_t[i], 1)) < 0.0) along[i].Reverse();
+  }
+  const auto ahead = [&](std::size_t i, std::size_t k) {
+    const gp_Vec step(points[i], points[k]);
+    return step.Dot(along[i]) > 0.0 && step.Dot(along[k]) > 0.0;
+  };
+  std::vector<std::size_t> kept = {0};
+  for (std::size_t j = 1; j < points.size(); ++j) {
+    if (j + 1 < points.size()) {
+      if (ahead(kept.back(), j)) kept.push_back(j);
+      continue;
+    }
+    while (kept.size() > 1 && !ahead(kept.back(), j)) kept.pop_back();
+    kept.push_back(j);
+  }
+  std::vector<gp_Pnt> kept_points;
+  std::vector<double> kept_t;
+  for (std::size_t i : kept) {
+    kept_points.push_back(points[i]);
+    kept_t.push_back(old_t[i]);
+  }
+  points = std::move(kept_points);
+  old_t = std::move(kept_t);
+}
+
+// The exact curve at the old curve's parameters `old_t` (those of samples dropped as out of order removed). A conic (a circle where a plane or a cone meets a sphere,
 // an ellipse where a plane meets a cylinder) is exact already: its own points, parameters and derivatives.
 // Otherwise the old curve's points (at its ends, its vertices) pulled onto the curve, the chord length as parameter
 // (scaled to the edge's range), and the velocities along the curve at that speed.
 std::optional<Samples> sample_exact_curve(const TopoDS_Edge& edge, const Sides& sides, bool conic,
-                                          const std::vector<double>& old_t) {
-  const int n = static_cast<int>(old_t.size()) - 1;
+                                          std::vector<double>& old_t) {
   double first = 0.0, last = 0.0;
   BRep_Tool::Range(edge, first, last);
   const BRepAdaptor_Curve old_curve(edge);
   TopoDS_Vertex v_first, v_last;
   TopExp::Vertices(edge, v_first, v_last);
+  std::vector<gp_Pnt> pulled;
+  for (std::size_t i = 0; i < old_t.size(); ++i) {
+    gp_XYZ x = conic                                         ? old_curve.Value(old_t[i]).XYZ()
+               : i == 0 && !v_first.IsNull()                 ? BRep_Tool::Pnt(v_first).XYZ()
+               : i + 1 == old_t.size() && !v_last.IsNull()   ? BRep_Tool::Pnt(v_last).XYZ()
+                                                             : old_curve.Value(old_t[i]).XYZ();
+    if (!conic && !pull_onto_both(sides.faces[sides.a].surface, sides.faces[sides.b].surface, x))
+      return std::nullopt;
+    pulled.emplace_back(x);
+  }
+  if (!conic) keep_samples_in_order(sides, old_curve, pulled, old_t);
+  const int n = static_cast<int>(old_t.size()) - 1;
+  if (n < 1) return std::nullopt;
   Samples out{new TColgp_HArray1OfPnt(1, n + 1), new TColStd_HArray1OfReal(1, n + 1), {}, {}, {}};
   std::vector<double> chord(n + 1, 0.0);
   for (int i = 0; i <= n; ++i) {
-    gp_XYZ x = conic                            ? old_curve.Value(old_t[i]).XYZ()
-               : i == 0 && !v_first.IsNull() ? BRep_Tool::Pnt(v_first).XYZ()
-               : i == n && !v_last.IsNull()  ? BRep_Tool::Pnt(v_last).XYZ()
-                                             : old_curve.Value(old_t[i]).XYZ();
-    if (!conic && !pull_onto_both(sides.faces[sides.a].surface, sides.faces[sides.b].surface, x))
-      return std::nullopt;
-    out.points->SetValue(i + 1, gp_Pnt(x));
-    if (i > 0) chord[i] = chord[i - 1] + out.points->Value(i + 1).Distance(out.points->Value(i));
+    out.points->SetValue(i + 1, pulled[i]);
+    if (i > 0) chord[i] = chord[i - 1] + pulled[i].Distance(pulled[i - 1]);
     out.params->SetValue(i + 1, old_t[i]);
   }
   if (!(chord[n] > 0.0)) return std::nullopt;
@@ -316,7 +360,7 @@ std::optional<Samples> sample_exact_curve(const TopoDS_Edge& edge, const Sides& 
 // Cubic splines through the samples of the exact curve at the old curve's parameters `old_t`, with the curve's
 // velocity at both ends (a conic keeps its own 3D curve), and how far they stray between each two samples.
 std::optional<Trace> trace_through(const TopoDS_Edge& edge, const Sides& sides, bool conic,
-                                   const std::vector<double>& old_t, std::vector<double>& deviations) {
+                                   std::vector<double>& old_t, std::vector<double>& deviations) {
   const std::optional<Samples> samples = sample_exact_curve(edge, sides, conic, old_t);
   if (!samples) return std::nullopt;
   const int count = samples->points->Length();
@@ -461,7 +505,7 @@ void fit_vertex_tolerances(const TopoDS_Edge& edge, const TopTools_IndexedDataMa
 }
 
 // The best trace of an edge: from samples evenly spaced along it, each interval whose curves stray more than the
-// target split in two (in the old curve's parameter), until all come within it or the samples run out.
+// target split in two (in the old curve's parameter), until all come within it or the samples or rounds run out.
 std::optional<Trace> best_trace(const TopoDS_Edge& edge, const Sides& sides) {
   const BRepAdaptor_Curve old_curve(edge);
   const GeomAbs_CurveType kind = old_curve.GetType();
@@ -472,7 +516,9 @@ std::optional<Trace> best_trace(const TopoDS_Edge& edge, const Sides& sides) {
   if (conic)
     for (int i = 0; i <= kFirstSamples; ++i) old_t[i] = first + (last - first) * i / kFirstSamples;
   std::optional<Trace> best;
-  for (;;) {
+  // Each round at least halves the worst intervals; samples dropped as out of order can come back as midpoints
+  // and be dropped again, so the rounds are counted too.
+  for (int round = 0; round < kMostRounds; ++round) {
     std::vector<double> deviations;
     std::optional<Trace> trace = trace_through(edge, sides, conic, old_t, deviations);
     if (!trace) return best;
