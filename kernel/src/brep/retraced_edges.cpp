@@ -270,7 +270,7 @@ gp_Vec exact_velocity(const Sides& sides, const gp_Pnt& p, const gp_Vec& ahead, 
 // Drops samples that the pull left behind the one before: the old curve strays along the exact one too (up to
 // its tolerance), so near a vertex, or where the old parameter runs fast, a pulled point can land behind its
 // predecessor, and the spline through them would turn back (a loop a checker finds self-intersecting). Each kept
-// point lies ahead of the one kept before it along the curve at both (in the old curve's sense); the last, the
+// point lies ahead of the one kept before it along the curve (in the old curve's sense); the last, the
 // vertex, is always kept, and points before it are dropped until it is ahead.
 void keep_samples_in_order(const Sides& sides, const Adaptor3d_Curve& old_curve, std::vector<gp_Pnt>& points,
                            std::vector<double>& old_t) {
@@ -279,12 +279,12 @@ void keep_samples_in_order(const Sides& sides, const Adaptor3d_Curve& old_curve,
     gp_XYZ ga, gb;
     sides.faces[sides.a].surface.value(points[i].XYZ(), ga);
     sides.faces[sides.b].surface.value(points[i].XYZ(), gb);
-    along[i] = gp_Vec(ga.Crossed(gb));
+    along[i] = gp_Vec(ga.Crossed(gb)).Normalized();
     if (along[i].Dot(old_curve.DN(old_t[i], 1)) < 0.0) along[i].Reverse();
   }
+  // Ahead along the mean of the two directions: a sharp bend between far samples is no reason to drop one.
   const auto ahead = [&](std::size_t i, std::size_t k) {
-    const gp_Vec step(points[i], points[k]);
-    return step.Dot(along[i]) > 0.0 && step.Dot(along[k]) > 0.0;
+    return gp_Vec(points[i], points[k]).Dot(along[i] + along[k]) > 0.0;
   };
   std::vector<std::size_t> kept = {0};
   for (std::size_t j = 1; j < points.size(); ++j) {
