@@ -23,11 +23,12 @@ struct RetracedEdges {
 };
 
 // Edges whose tolerance exceeds kLooseEdgeTolerance, between a plane, sphere, cylinder or cone and another of
-// these, get curves through points on both surfaces (to 1e-12; a line or conic keeps its 3D curve, which is exact,
-// and gets new (u, v) curves) and the tolerance they hold (at least 1e-7), in
-// place: the shapes may share such edges, and every shape holding one sees it retraced. An edge is left as it was
-// when the surfaces meet nearly tangentially along it, a point of it lies near a sphere's pole, or the new curves
-// do not hold half the old tolerance. Vertices of retraced edges get the tolerance their edges need.
+// these, get curves through points on both surfaces (to 1e-14; a line or conic keeps its 3D curve, which is exact,
+// and gets new (u, v) curves) and the tolerance they hold (at least 1e-7), in place: the shapes may share such
+// edges, and every shape holding one sees it retraced. An edge is left as it was when the surfaces meet nearly
+// tangentially along it, a point of it lies within 1e-3 (cosine) of a sphere's pole, or the new curves do not hold
+// half the old tolerance; and put back, with every retraced edge of the face, when a face along it that BRepCheck
+// found valid before is invalid after. Vertices of retraced edges get the tolerance their edges need.
 RetracedEdges retrace_loose_edges(const std::vector<TopoDS_Shape>& shapes);
 
 constexpr double kLooseEdgeTolerance = 2e-7;
