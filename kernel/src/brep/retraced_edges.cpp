@@ -305,28 +305,49 @@ void keep_samples_in_order(const Sides& sides, const Adaptor3d_Curve& old_curve,
   old_t = std::move(kept_t);
 }
 
-// The exact curve at the old curve's parameters `old_t` (those of samples dropped as out of order removed). A conic (a circle where a plane or a cone meets a sphere,
-// an ellipse where a plane meets a cylinder) is exact already: its own points, parameters and derivatives.
-// Otherwise the old curve's points (at its ends, its vertices) pulled onto the curve, the chord length as parameter
-// (scaled to the edge's range), and the velocities along the curve at that speed.
-std::optional<Samples> sample_exact_curve(const TopoDS_Edge& edge, const Sides& sides, bool conic,
-                                          std::vector<double>& old_t) {
-  double first = 0.0, last = 0.0;
-  BRep_Tool::Range(edge, first, last);
+// The first samples of the exact curve, at the old curve's parameters `old_t`: a conic (a circle where a plane or
+// a cone meets a sphere, an ellipse where a plane meets a cylinder) is exact already, its own points; otherwise the
+// old curve's points (at its ends, its vertices) pulled onto the curve, those left out of order dropped (with
+// their parameters).
+std::optional<std::vector<gp_Pnt>> first_samples(const TopoDS_Edge& edge, const Sides& sides, bool conic,
+                                                 std::vector<double>& old_t) {
   const BRepAdaptor_Curve old_curve(edge);
   TopoDS_Vertex v_first, v_last;
   TopExp::Vertices(edge, v_first, v_last);
   std::vector<gp_Pnt> pulled;
   for (std::size_t i = 0; i < old_t.size(); ++i) {
-    gp_XYZ x = conic                                         ? old_curve.Value(old_t[i]).XYZ()
-               : i == 0 && !v_first.IsNull()                 ? BRep_Tool::Pnt(v_first).XYZ()
-               : i + 1 == old_t.size() && !v_last.IsNull()   ? BRep_Tool::Pnt(v_last).XYZ()
-                                                             : old_curve.Value(old_t[i]).XYZ();
+    gp_XYZ x = conic                                       ? old_curve.Value(old_t[i]).XYZ()
+               : i == 0 && !v_first.IsNull()               ? BRep_Tool::Pnt(v_first).XYZ()
+               : i + 1 == old_t.size() && !v_last.IsNull() ? BRep_Tool::Pnt(v_last).XYZ()
+                                                           : old_curve.Value(old_t[i]).XYZ();
     if (!conic && !pull_onto_both(sides.faces[sides.a].surface, sides.faces[sides.b].surface, x))
       return std::nullopt;
     pulled.emplace_back(x);
   }
   if (!conic) keep_samples_in_order(sides, old_curve, pulled, old_t);
+  if (pulled.size() < 2) return std::nullopt;
+  return pulled;
+}
+
+// Samples between two of the exact curve: a conic's own point at the middle parameter; otherwise the middle of
+// their chord pulled onto the curve, which lands between them (the pull moves across the curve), where the old
+// curve's point at the middle parameter, off along the curve too, could land behind one of them.
+std::optional<gp_Pnt> middle_sample(const Sides& sides, const Adaptor3d_Curve& old_curve, bool conic, double t0,
+                                    double t1, const gp_Pnt& p0, const gp_Pnt& p1) {
+  if (conic) return old_curve.Value(0.5 * (t0 + t1));
+  gp_XYZ x = 0.5 * (p0.XYZ() + p1.XYZ());
+  if (!pull_onto_both(sides.faces[sides.a].surface, sides.faces[sides.b].surface, x)) return std::nullopt;
+  return gp_Pnt(x);
+}
+
+// The samples `points` of the exact curve (from the old curve's parameters `old_t`) as spline data: for a conic
+// its parameters and derivatives; otherwise the chord length as parameter (scaled to the edge's range) and the
+// velocities along the curve at that speed at both ends; and their (u, v) on each face.
+std::optional<Samples> sample_exact_curve(const TopoDS_Edge& edge, const Sides& sides, bool conic,
+                                          const std::vector<double>& old_t, const std::vector<gp_Pnt>& pulled) {
+  double first = 0.0, last = 0.0;
+  BRep_Tool::Range(edge, first, last);
+  const BRepAdaptor_Curve old_curve(edge);
   const int n = static_cast<int>(old_t.size()) - 1;
   if (n < 1) return std::nullopt;
   Samples out{new TColgp_HArray1OfPnt(1, n + 1), new TColStd_HArray1OfReal(1, n + 1), {}, {}, {}};
@@ -357,11 +378,12 @@ std::optional<Samples> sample_exact_curve(const TopoDS_Edge& edge, const Sides& 
   return out;
 }
 
-// Cubic splines through the samples of the exact curve at the old curve's parameters `old_t`, with the curve's
-// velocity at both ends (a conic keeps its own 3D curve), and how far they stray between each two samples.
+// Cubic splines through the samples of the exact curve, with the curve's velocity at both ends (a conic keeps its
+// own 3D curve), and how far they stray between each two samples.
 std::optional<Trace> trace_through(const TopoDS_Edge& edge, const Sides& sides, bool conic,
-                                   std::vector<double>& old_t, std::vector<double>& deviations) {
-  const std::optional<Samples> samples = sample_exact_curve(edge, sides, conic, old_t);
+                                   const std::vector<double>& old_t, const std::vector<gp_Pnt>& points,
+                                   std::vector<double>& deviations) {
+  const std::optional<Samples> samples = sample_exact_curve(edge, sides, conic, old_t, points);
   if (!samples) return std::nullopt;
   const int count = samples->points->Length();
   Trace trace;
@@ -505,7 +527,7 @@ void fit_vertex_tolerances(const TopoDS_Edge& edge, const TopTools_IndexedDataMa
 }
 
 // The best trace of an edge: from samples evenly spaced along it, each interval whose curves stray more than the
-// target split in two (in the old curve's parameter), until all come within it or the samples or rounds run out.
+// target split in two, until all come within it or the samples or rounds run out.
 std::optional<Trace> best_trace(const TopoDS_Edge& edge, const Sides& sides) {
   const BRepAdaptor_Curve old_curve(edge);
   const GeomAbs_CurveType kind = old_curve.GetType();
@@ -515,22 +537,33 @@ std::optional<Trace> best_trace(const TopoDS_Edge& edge, const Sides& sides) {
   std::vector<double> old_t = even_parameters(old_curve, first, last, kFirstSamples);
   if (conic)
     for (int i = 0; i <= kFirstSamples; ++i) old_t[i] = first + (last - first) * i / kFirstSamples;
+  std::optional<std::vector<gp_Pnt>> first_points = first_samples(edge, sides, conic, old_t);
+  if (!first_points) return std::nullopt;
+  std::vector<gp_Pnt> points = std::move(*first_points);
   std::optional<Trace> best;
-  // Each round at least halves the worst intervals; samples dropped as out of order can come back as midpoints
-  // and be dropped again, so the rounds are counted too.
   for (int round = 0; round < kMostRounds; ++round) {
     std::vector<double> deviations;
-    std::optional<Trace> trace = trace_through(edge, sides, conic, old_t, deviations);
+    std::optional<Trace> trace = trace_through(edge, sides, conic, old_t, points, deviations);
     if (!trace) return best;
     if (!best || trace->deviation < best->deviation) best = trace;
     if (best->deviation <= kTargetDeviation) break;
-    std::vector<double> refined = {old_t.front()};
+    std::vector<double> refined_t = {old_t.front()};
+    std::vector<gp_Pnt> refined = {points.front()};
     for (std::size_t i = 0; i + 1 < old_t.size(); ++i) {
-      if (deviations[i] > kTargetDeviation) refined.push_back(0.5 * (old_t[i] + old_t[i + 1]));
-      refined.push_back(old_t[i + 1]);
+      if (deviations[i] > kTargetDeviation) {
+        const std::optional<gp_Pnt> middle =
+            middle_sample(sides, old_curve, conic, old_t[i], old_t[i + 1], points[i], points[i + 1]);
+        if (middle) {
+          refined_t.push_back(0.5 * (old_t[i] + old_t[i + 1]));
+          refined.push_back(*middle);
+        }
+      }
+      refined_t.push_back(old_t[i + 1]);
+      refined.push_back(points[i + 1]);
     }
-    if (refined.size() > static_cast<std::size_t>(kMostSamples)) break;
-    old_t = std::move(refined);
+    if (refined.size() > static_cast<std::size_t>(kMostSamples) || refined.size() == points.size()) break;
+    old_t = std::move(refined_t);
+    points = std::move(refined);
   }
   return best;
 }
