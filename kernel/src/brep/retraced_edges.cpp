@@ -257,14 +257,14 @@ struct Samples {
   std::vector<Handle(TColgp_HArray1OfPnt2d)> uvs;
 };
 
-// The exact curve's velocity at a point: along the normals' cross product, pointing to `ahead`, at `speed`.
-gp_Vec exact_velocity(const Sides& sides, const gp_Pnt& p, const gp_Vec& ahead, double speed) {
+// The exact curve's unit tangent at a point: the normals' cross product, turned to point along `sense`.
+gp_Vec exact_direction(const Sides& sides, const gp_Pnt& p, const gp_Vec& sense) {
   gp_XYZ ga, gb;
   sides.faces[sides.a].surface.value(p.XYZ(), ga);
   sides.faces[sides.b].surface.value(p.XYZ(), gb);
-  gp_Vec along(ga.Crossed(gb));
-  if (along.Dot(ahead) < 0.0) along.Reverse();
-  return along.Normalized() * speed;
+  gp_Vec along = gp_Vec(ga.Crossed(gb)).Normalized();
+  if (along.Dot(sense) < 0.0) along.Reverse();
+  return along;
 }
 
 // Drops samples that the pull left behind the one before: the old curve strays along the exact one too (up to
@@ -275,13 +275,8 @@ gp_Vec exact_velocity(const Sides& sides, const gp_Pnt& p, const gp_Vec& ahead, 
 void keep_samples_in_order(const Sides& sides, const Adaptor3d_Curve& old_curve, std::vector<gp_Pnt>& points,
                            std::vector<double>& old_t) {
   std::vector<gp_Vec> along(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    gp_XYZ ga, gb;
-    sides.faces[sides.a].surface.value(points[i].XYZ(), ga);
-    sides.faces[sides.b].surface.value(points[i].XYZ(), gb);
-    along[i] = gp_Vec(ga.Crossed(gb)).Normalized();
-    if (along[i].Dot(old_curve.DN(old_t[i], 1)) < 0.0) along[i].Reverse();
-  }
+  for (std::size_t i = 0; i < points.size(); ++i)
+    along[i] = exact_direction(sides, points[i], old_curve.DN(old_t[i], 1));
   // Ahead along the mean of the two directions: a sharp bend between far samples is no reason to drop one.
   const auto ahead = [&](std::size_t i, std::size_t k) {
     return gp_Vec(points[i], points[k]).Dot(along[i] + along[k]) > 0.0;
@@ -309,9 +304,8 @@ void keep_samples_in_order(const Sides& sides, const Adaptor3d_Curve& old_curve,
 // a cone meets a sphere, an ellipse where a plane meets a cylinder) is exact already, its own points; otherwise the
 // old curve's points (at its ends, its vertices) pulled onto the curve, those left out of order dropped (with
 // their parameters).
-std::optional<std::vector<gp_Pnt>> first_samples(const TopoDS_Edge& edge, const Sides& sides, bool conic,
-                                                 std::vector<double>& old_t) {
-  const BRepAdaptor_Curve old_curve(edge);
+std::optional<std::vector<gp_Pnt>> first_samples(const TopoDS_Edge& edge, const BRepAdaptor_Curve& old_curve,
+                                                 const Sides& sides, bool conic, std::vector<double>& old_t) {
   TopoDS_Vertex v_first, v_last;
   TopExp::Vertices(edge, v_first, v_last);
   std::vector<gp_Pnt> pulled;
@@ -343,11 +337,9 @@ std::optional<gp_Pnt> middle_sample(const Sides& sides, const Adaptor3d_Curve& o
 // The samples `points` of the exact curve (from the old curve's parameters `old_t`) as spline data: for a conic
 // its parameters and derivatives; otherwise the chord length as parameter (scaled to the edge's range) and the
 // velocities along the curve at that speed at both ends; and their (u, v) on each face.
-std::optional<Samples> sample_exact_curve(const TopoDS_Edge& edge, const Sides& sides, bool conic,
+std::optional<Samples> sample_exact_curve(const BRepAdaptor_Curve& old_curve, const Sides& sides, bool conic,
                                           const std::vector<double>& old_t, const std::vector<gp_Pnt>& pulled) {
-  double first = 0.0, last = 0.0;
-  BRep_Tool::Range(edge, first, last);
-  const BRepAdaptor_Curve old_curve(edge);
+  const double first = old_curve.FirstParameter(), last = old_curve.LastParameter();
   const int n = static_cast<int>(old_t.size()) - 1;
   if (n < 1) return std::nullopt;
   Samples out{new TColgp_HArray1OfPnt(1, n + 1), new TColStd_HArray1OfReal(1, n + 1), {}, {}, {}};
@@ -355,21 +347,17 @@ std::optional<Samples> sample_exact_curve(const TopoDS_Edge& edge, const Sides& 
   for (int i = 0; i <= n; ++i) {
     out.points->SetValue(i + 1, pulled[i]);
     if (i > 0) chord[i] = chord[i - 1] + pulled[i].Distance(pulled[i - 1]);
-    out.params->SetValue(i + 1, old_t[i]);
   }
   if (!(chord[n] > 0.0)) return std::nullopt;
+  for (int i = 0; i <= n; ++i)
+    out.params->SetValue(i + 1, conic ? old_t[i] : i == n ? last : first + (last - first) * chord[i] / chord[n]);
   if (conic) {
     out.start_velocity = old_curve.DN(first, 1);
     out.end_velocity = old_curve.DN(last, 1);
   } else {
-    for (int i = 1; i < n; ++i) out.params->SetValue(i + 1, first + (last - first) * chord[i] / chord[n]);
-    out.params->SetValue(1, first);
-    out.params->SetValue(n + 1, last);
     const double speed = chord[n] / (last - first);
-    out.start_velocity = exact_velocity(sides, out.points->Value(1),
-                                        gp_Vec(out.points->Value(1), out.points->Value(2)), speed);
-    out.end_velocity = exact_velocity(sides, out.points->Value(n + 1),
-                                      gp_Vec(out.points->Value(n), out.points->Value(n + 1)), speed);
+    out.start_velocity = exact_direction(sides, pulled[0], gp_Vec(pulled[0], pulled[1])) * speed;
+    out.end_velocity = exact_direction(sides, pulled[n], gp_Vec(pulled[n - 1], pulled[n])) * speed;
   }
   for (std::size_t k = 0; k < sides.faces.size(); ++k) {
     out.uvs.push_back(new TColgp_HArray1OfPnt2d(1, n + 1));
@@ -380,10 +368,10 @@ std::optional<Samples> sample_exact_curve(const TopoDS_Edge& edge, const Sides& 
 
 // Cubic splines through the samples of the exact curve, with the curve's velocity at both ends (a conic keeps its
 // own 3D curve), and how far they stray between each two samples.
-std::optional<Trace> trace_through(const TopoDS_Edge& edge, const Sides& sides, bool conic,
+std::optional<Trace> trace_through(const BRepAdaptor_Curve& old_curve, const Sides& sides, bool conic,
                                    const std::vector<double>& old_t, const std::vector<gp_Pnt>& points,
                                    std::vector<double>& deviations) {
-  const std::optional<Samples> samples = sample_exact_curve(edge, sides, conic, old_t, points);
+  const std::optional<Samples> samples = sample_exact_curve(old_curve, sides, conic, old_t, points);
   if (!samples) return std::nullopt;
   const int count = samples->points->Length();
   Trace trace;
@@ -406,11 +394,11 @@ std::optional<Trace> trace_through(const TopoDS_Edge& edge, const Sides& sides, 
     if (!pcurve.IsDone()) return std::nullopt;
     trace.pcurves.push_back(pcurve.Curve());
   }
-  double first = 0.0, last = 0.0;
-  BRep_Tool::Range(edge, first, last);
-  deviations = conic ? interval_deviations(trace, BRepAdaptor_Curve(edge), sides, samples->params->Array1())
-                     : interval_deviations(trace, GeomAdaptor_Curve(trace.curve, first, last), sides,
-                                           samples->params->Array1());
+  deviations = conic ? interval_deviations(trace, old_curve, sides, samples->params->Array1())
+                     : interval_deviations(trace,
+                                           GeomAdaptor_Curve(trace.curve, old_curve.FirstParameter(),
+                                                             old_curve.LastParameter()),
+                                           sides, samples->params->Array1());
   trace.deviation = *std::max_element(deviations.begin(), deviations.end());
   return trace;
 }
@@ -458,11 +446,8 @@ double vertex_tolerance_needed(const TopoDS_Vertex& vertex, const TopTools_ListO
   double needed = 1e-7;
   for (const TopoDS_Shape& e : edges) {
     const TopoDS_Edge& edge = TopoDS::Edge(e);
-    if (BRep_Tool::Degenerated(edge)) {
-      needed = std::max(needed, BRep_Tool::Tolerance(edge));
-      continue;
-    }
     needed = std::max(needed, BRep_Tool::Tolerance(edge));
+    if (BRep_Tool::Degenerated(edge)) continue;
     const double t = BRep_Tool::Parameter(vertex, edge);
     needed = std::max(needed, 1.1 * BRepAdaptor_Curve(edge).Value(t).Distance(p));
     const int index = edge_faces.FindIndex(edge);
@@ -537,13 +522,13 @@ std::optional<Trace> best_trace(const TopoDS_Edge& edge, const Sides& sides) {
   std::vector<double> old_t = even_parameters(old_curve, first, last, kFirstSamples);
   if (conic)
     for (int i = 0; i <= kFirstSamples; ++i) old_t[i] = first + (last - first) * i / kFirstSamples;
-  std::optional<std::vector<gp_Pnt>> first_points = first_samples(edge, sides, conic, old_t);
+  std::optional<std::vector<gp_Pnt>> first_points = first_samples(edge, old_curve, sides, conic, old_t);
   if (!first_points) return std::nullopt;
   std::vector<gp_Pnt> points = std::move(*first_points);
   std::optional<Trace> best;
   for (int round = 0; round < kMostRounds; ++round) {
     std::vector<double> deviations;
-    std::optional<Trace> trace = trace_through(edge, sides, conic, old_t, points, deviations);
+    std::optional<Trace> trace = trace_through(old_curve, sides, conic, old_t, points, deviations);
     if (!trace) return best;
     if (!best || trace->deviation < best->deviation) best = trace;
     if (best->deviation <= kTargetDeviation) break;
