@@ -501,13 +501,16 @@ void restore_edge(const TopoDS_Edge& edge, const Sides& sides, const SavedEdge& 
   edge.TShape()->Modified(Standard_True);
 }
 
-// The edge's vertices given the tolerance their edges need now.
-void fit_vertex_tolerances(const TopoDS_Edge& edge, const TopTools_IndexedDataMapOfShapeListOfShape& vertex_edges,
-                           const TopTools_IndexedDataMapOfShapeListOfShape& edge_faces) {
+// The edge's vertices given at least the tolerance their edges need now. Never less than they had: a vertex's
+// tolerance also covers the other edges that meet there, and where two of them meet at a small angle on a face
+// that no retraced edge bounds (so no check below sees it), a smaller one made their (u, v) curves cross outside it
+// and the face read back self-intersecting (the octet at node 0.45, beams 1.0 of the node, a taper).
+void cover_vertices(const TopoDS_Edge& edge, const TopTools_IndexedDataMapOfShapeListOfShape& vertex_edges,
+                    const TopTools_IndexedDataMapOfShapeListOfShape& edge_faces) {
   for (TopExp_Explorer v(edge, TopAbs_VERTEX); v.More(); v.Next()) {
     const TopoDS_Vertex& vertex = TopoDS::Vertex(v.Current());
     const double needed = vertex_tolerance_needed(vertex, vertex_edges.FindFromKey(vertex), edge_faces);
-    if (needed < BRep_Tool::Tolerance(vertex)) Handle(BRep_TVertex)::DownCast(vertex.TShape())->Tolerance(needed);
+    if (needed > BRep_Tool::Tolerance(vertex)) Handle(BRep_TVertex)::DownCast(vertex.TShape())->Tolerance(needed);
   }
 }
 
@@ -598,7 +601,7 @@ RetracedEdges retrace_loose_edges(const std::vector<TopoDS_Shape>& shapes) {
         valid_before.push_back(BRepCheck_Analyzer(side.face).IsValid());
     applied.push_back({edge, *sides, save_edge(edge, *sides)});
     apply_trace(edge, *sides, *trace, new_tolerance);
-    fit_vertex_tolerances(edge, vertex_edges, edge_faces);
+    cover_vertices(edge, vertex_edges, edge_faces);
   }
   // The new curves stay only where every face along them that was valid still is (a face whose loop ends at a
   // sphere's pole can come out self-intersecting); otherwise all edges of such a face get their old curves back.

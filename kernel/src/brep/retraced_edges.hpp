@@ -28,7 +28,8 @@ struct RetracedEdges {
 // edges, and every shape holding one sees it retraced. An edge is left as it was when the surfaces meet nearly
 // tangentially along it, a point of it lies within 1e-3 (cosine) of a sphere's pole, or the new curves do not hold
 // half the old tolerance; and put back, with every retraced edge of the face, when a face along it that BRepCheck
-// found valid before is invalid after. Vertices of retraced edges get the tolerance their edges need.
+// found valid before is invalid after. Vertices keep their tolerance, raised where the new curves need more: a
+// vertex's tolerance also covers the other edges meeting there, on faces that no retraced edge bounds.
 RetracedEdges retrace_loose_edges(const std::vector<TopoDS_Shape>& shapes);
 
 constexpr double kLooseEdgeTolerance = 2e-7;
