@@ -52,6 +52,9 @@ def main():
         peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
         print("beams %d, written in %.1f s, %.1f MB (%.1f KB per beam), peak %.0f MB, %d crossing hubs" % (
             lat.beam_count, write, size / 1e6, size / 1e3 / lat.beam_count, peak, stats["crossing_hubs"]), flush=True)
+        print("loose edges of the Booleans %d (up to %.1e), retraced %d (now up to %.1e) in %.1f s" % (
+            stats["loose_edges"], stats["loosest_edge_before"], stats["retraced_edges"], stats["loosest_edge_after"],
+            stats["retrace_seconds"]), flush=True)
         start = time.perf_counter()
         parts = sl.read_step(path)
         print("read back by OpenCASCADE in %.1f s" % (time.perf_counter() - start))

@@ -7,10 +7,11 @@ whose properties cannot be computed (then checked against sampling its membershi
 different hubs meet (the clean check's business, not a hub's), is refused because a beam is too short for the
 collars of its two crowded hubs (the message must name the beam), or fails.
 
-`python3 crowded_sweep.py [--long] [--trim | --mesh | --trim --mesh | --properties]` prints every case and the counts
-(--trim: each design trimmed into a box with a skin instead, checked against sampling; --mesh: each design as a mesh,
-run_mesh_case; both: each design as a trimmed mesh, run_trim_mesh_case; --properties: only the exact properties,
-run_properties_case, the census of those refused);
+`python3 crowded_sweep.py [--long] [--only SPEC] [--trim | --mesh | --trim --mesh | --properties]` prints every case
+and the counts (--only: a part of the sweep, see `only`; --trim: each design trimmed into a box with a skin
+instead, checked against sampling; --mesh: each design as a mesh, run_mesh_case; both: each design as a trimmed
+mesh, run_trim_mesh_case; --properties: only the exact properties, run_properties_case, the census of those
+refused);
 test_crowded_hubs.py runs the short sweep, test_mesh.py the short mesh sweep.
 """
 import itertools
@@ -276,8 +277,22 @@ def sweep(cases, out=sys.stdout, run=run_case):
     return counts, results
 
 
+def only(cases, spec):
+    """The cases matching `spec`, "key=v1,v2;key=..." with keys preset, node, ratio ("hull" for the model) and
+    step: e.g. "node=0.45;ratio=0.8,0.9,1.0,hull" (the long sweep's densest designs)."""
+    for part in filter(None, spec.split(";")):
+        key, values = part.split("=")
+        index = ["preset", "node", "ratio", "step"].index(key)
+        wanted = set(values.split(","))
+        cases = [c for c in cases if ("hull" if c[index] is None else str(c[index])) in wanted]
+    return cases
+
+
 if __name__ == "__main__":
     trim, mesh = "--trim" in sys.argv, "--mesh" in sys.argv
-    sweep(long_cases() if "--long" in sys.argv else short_cases(),
+    chosen = long_cases() if "--long" in sys.argv else short_cases()
+    if "--only" in sys.argv:
+        chosen = only(chosen, sys.argv[sys.argv.index("--only") + 1])
+    sweep(chosen,
           run=run_trim_mesh_case if trim and mesh else run_trim_case if trim else run_mesh_case if mesh else
           run_properties_case if "--properties" in sys.argv else run_case)
