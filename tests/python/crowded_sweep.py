@@ -281,8 +281,11 @@ def only(cases, spec):
     """The cases matching `spec`, "key=v1,v2;key=..." with keys preset, node, ratio ("hull" for the model) and
     step: e.g. "node=0.45;ratio=0.8,0.9,1.0,hull" (the long sweep's densest designs)."""
     for part in filter(None, spec.split(";")):
-        key, values = part.split("=")
-        index = ["preset", "node", "ratio", "step"].index(key)
+        key, _, values = part.partition("=")
+        keys = ["preset", "node", "ratio", "step"]
+        if key not in keys:
+            raise SystemExit("--only: %r is not one of %s" % (key, ", ".join(keys)))
+        index = keys.index(key)
         wanted = set(values.split(","))
         cases = [c for c in cases if ("hull" if c[index] is None else str(c[index])) in wanted]
     return cases
