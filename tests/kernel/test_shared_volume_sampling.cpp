@@ -1,0 +1,120 @@
+// The volume overlapping hubs share, integrated along lines where their pieces meet (the check of the properties'
+// cluster Fuse), against the closed form of two balls' lens and against plain point sampling of the same integrand
+// over the hubs' whole box (the slow, obviously right twin).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "brick_definition.hpp"
+#include "properties/shared_volume_sampling.hpp"
+#include "steady/core/constants.hpp"
+#include "steady/lattice/hub.hpp"
+#include "steady/query/hub_overlaps.hpp"
+
+namespace steady {
+namespace {
+
+Hub lone_ball(const Vec3& center, double radius) {
+  Hub h;
+  h.ball = Ball{center, radius};
+  return h;
+}
+
+// Plain sampling: uniform points of the box around all hubs, each counting (hubs holding it - 1) where positive.
+std::pair<double, double> point_sampled_shared_volume(const std::vector<Hub>& hubs, int samples, std::uint64_t seed) {
+  Vec3 lo(1e300), hi(-1e300);
+  for (const Hub& h : hubs) {
+    lo = glm::min(lo, h.ball.center - Vec3(h.ball.radius));
+    hi = glm::max(hi, h.ball.center + Vec3(h.ball.radius));
+    for (const Stump& s : h.stumps) {
+      lo = glm::min(lo, s.cut.center - Vec3(s.cut.radius));
+      hi = glm::max(hi, s.cut.center + Vec3(s.cut.radius));
+    }
+  }
+  std::mt19937_64 random(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  double sum = 0.0, squares = 0.0;
+  for (int i = 0; i < samples; ++i) {
+    const double x = unit(random), y = unit(random), z = unit(random);
+    const Vec3 p = lo + (hi - lo) * Vec3(x, y, z);
+    int holding = 0;
+    for (const Hub& h : hubs) holding += inside_hub(h, p) ? 1 : 0;
+    const double w = std::max(0, holding - 1);
+    sum += w;
+    squares += w * w;
+  }
+  const double box = (hi.x - lo.x) * (hi.y - lo.y) * (hi.z - lo.z);
+  const double mean = sum / samples;
+  return {box * mean, box * std::sqrt((squares / samples - mean * mean) / samples)};
+}
+
+std::vector<Hub> all_hubs(const Lattice& lat) {
+  std::vector<Hub> hubs;
+  lat.for_each_ball([&](std::int64_t, const NodeId& n, const Ball&) { hubs.push_back(hub(lat, n)); });
+  return hubs;
+}
+
+TEST(SharedVolumeSampling, TwoBallsShareTheirLens) {
+  // Balls of radius R at distance d share pi (4R + d)(2R - d)^2 / 12; a third ball apart shares nothing.
+  const double R = 0.4, d = 0.5;
+  const double lens = kPi * (4 * R + d) * (2 * R - d) * (2 * R - d) / 12.0;
+  const std::vector<Hub> hubs{lone_ball(Vec3(0.0), R), lone_ball(Vec3(0.3, 0.4, 0.0), R),
+                              lone_ball(Vec3(3.0, 0.0, 0.0), R)};
+  const auto [shared, sigma] = sampled_shared_volume(hubs, 10000, 7);
+  std::printf("[ report ] lens %.9f, lines %.9f +- %.1e\n", lens, shared, sigma);
+  EXPECT_NEAR(shared, lens, 5 * sigma + 1e-12);
+  EXPECT_LT(sigma, 2e-3 * lens);  // the chords' square-root edge at the lens rim limits the grid
+  EXPECT_GT(sigma, 0.0);
+  const auto [apart, none] = sampled_shared_volume({hubs[0], hubs[2]}, 10000, 7);
+  EXPECT_EQ(apart, 0.0);
+  EXPECT_EQ(none, 0.0);
+}
+
+TEST(SharedVolumeSampling, ThreeBallsCountWhatTheyShareTwice) {
+  // Three equal balls around one point: the integrand is 2 where all three hold a point, and the lines give the
+  // sum of the pair lenses less the triple part once (sum of volumes less the union), as the points do.
+  const double R = 0.5;
+  const std::vector<Hub> hubs{lone_ball(Vec3(0.0), R), lone_ball(Vec3(0.6, 0.0, 0.0), R),
+                              lone_ball(Vec3(0.3, 0.5, 0.0), R)};
+  const auto [lines, sigma] = sampled_shared_volume(hubs, 30000, 11);
+  const auto [points, point_sigma] = point_sampled_shared_volume(hubs, 2000000, 5);
+  std::printf("[ report ] three balls: lines %.7f +- %.1e, points %.7f +- %.1e\n", lines, sigma, points, point_sigma);
+  EXPECT_NEAR(lines, points, 5 * std::hypot(sigma, point_sigma));
+  EXPECT_LT(sigma, 0.5 * point_sigma);  // 30,000 lines against 2 million points
+}
+
+TEST(SharedVolumeSampling, CrowdedLatticesAgreeWithPointSampling) {
+  // Nodes near each other with thick beams: balls meet beams and beams meet beams of other hubs, in random ways.
+  std::mt19937_64 rng(2027);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int compared = 0;
+  for (int trial = 0; trial < 6; ++trial) {
+    test::BrickDefinition d;
+    const double r0 = 0.2 + 0.1 * unit(rng), r1 = 0.15 + 0.1 * unit(rng);
+    d.nodes = {{Vec3(0.0), r0}, {Vec3(0.3 + 0.2 * unit(rng), 0.3 + 0.2 * unit(rng), 0.1 * unit(rng)), r1}};
+    const double b = 0.08 + 0.08 * unit(rng);
+    d.beams = {{0, 1, 0, 0, 0, b, b}, {0, 0, 1, 0, 0, b, 0.9 * b}, {0, 1, 0, 0, 1, b, b}, {1, 0, 1, 0, 0, b, b}};
+    d.counts = {2, 2, 1};
+    d.u = {Similarity::swirl(0.04 * unit(rng), {0, 0, 1}, {0.5, -6, 0}, 1.0 + 0.03 * unit(rng)) *
+           Similarity::translation({1, 0, 0})};
+    d.v = {Similarity::translation({0, 1, 0})};
+    d.w = {Similarity::translation({0, 0, 1})};
+    const Lattice lat(d);
+    if (check_hub_overlaps(lat).overlap_count == 0) continue;
+    const std::vector<Hub> hubs = all_hubs(lat);
+    const auto [lines, sigma] = sampled_shared_volume(hubs, 100000, 3 + trial);
+    const auto [points, point_sigma] = point_sampled_shared_volume(hubs, 2000000, 17 + trial);
+    std::printf("[ report ] trial %d: lines %.7f +- %.1e, points %.7f +- %.1e\n", trial, lines, sigma, points,
+                point_sigma);
+    EXPECT_GT(lines, 0.0) << trial;
+    EXPECT_NEAR(lines, points, 5 * std::hypot(sigma, point_sigma)) << trial;
+    EXPECT_LT(sigma, 0.3 * point_sigma) << trial;  // 100,000 lines against 2 million points
+    ++compared;
+  }
+  EXPECT_GE(compared, 3);
+}
+
+}  // namespace
+}  // namespace steady
