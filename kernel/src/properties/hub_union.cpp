@@ -326,7 +326,8 @@ HubUnionCorrection hub_union_correction(const Lattice& lattice, const std::vecto
     // Lines through where the hubs meet: about 1e-5 of the shared volume of a 40-hub octet cluster in 3 s, 1e-4 of
     // a lone lens (docs/brep.md); a Fuse's error of 1e-3 of the cluster then lies hundreds of standard errors out.
     constexpr int kLines = 400000;
-    const auto [shared, sigma] = sampled_shared_volume(members, kLines, 0x5eed + c);
+    const std::pair<double, double> sampled = sampled_shared_volume(members, kLines, 0x5eed + c);
+    const double shared = sampled.first, sigma = sampled.second;  // named copies: a lambda below reads them
     MassMoments u;
     checked_fuse(hub_solids, hubs_extent(members), [&](const TopoDS_Shape& united) {
       if (!BRepCheck_Analyzer(united).IsValid()) return "OpenCASCADE's Fuse gave an invalid solid for " + what;
