@@ -68,4 +68,22 @@ inline Lattice random_lattice(std::mt19937_64& rng, const LatticeOptions& o, Cou
   return Lattice(d);
 }
 
+// Two nodes close together with beams along U and V (bent, slightly tapered): balls and beams of neighbouring
+// hubs overlap in varying ways, sometimes in one cluster of overlapping hubs, sometimes in several. Beam radii are
+// drawn from [beam, beam + beam_span); `count_u` cells along U.
+inline BrickDefinition two_close_nodes(std::mt19937_64& rng, double beam, double beam_span, std::int64_t count_u) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  BrickDefinition d;
+  const double r0 = 0.2 + 0.1 * unit(rng), r1 = 0.15 + 0.1 * unit(rng);
+  d.nodes = {{Vec3(0.0), r0}, {Vec3(0.3 + 0.2 * unit(rng), 0.3 + 0.2 * unit(rng), 0.1 * unit(rng)), r1}};
+  const double b = beam + beam_span * unit(rng);
+  d.beams = {{0, 1, 0, 0, 0, b, b}, {0, 0, 1, 0, 0, b, 0.9 * b}, {0, 1, 0, 0, 1, b, b}, {1, 0, 1, 0, 0, b, b}};
+  d.counts = {count_u, 2, 1};
+  d.u = {Similarity::swirl(0.04 * unit(rng), {0, 0, 1}, {0.5, -6, 0}, 1.0 + 0.03 * unit(rng)) *
+         Similarity::translation({1, 0, 0})};
+  d.v = {Similarity::translation({0, 1, 0})};
+  d.w = {Similarity::translation({0, 0, 1})};
+  return d;
+}
+
 }  // namespace steady::test

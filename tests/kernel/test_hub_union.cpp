@@ -14,6 +14,7 @@
 #include "properties/hub_solid.hpp"
 #include "steady/properties/lattice_properties.hpp"
 #include "brick_definition.hpp"
+#include "lattice_test_shapes.hpp"
 
 namespace steady {
 namespace {
@@ -85,20 +86,9 @@ TEST(HubUnion, RandomNonCleanLatticesMatchBRepGProp) {
   // Random radii and offsets of a second node close to the first: balls and beams of neighbouring hubs overlap
   // in varying ways, sometimes in one cluster, sometimes in several.
   std::mt19937_64 rng(2026);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
   int compared = 0;
   for (int trial = 0; trial < 4; ++trial) {
-    test::BrickDefinition d;
-    const double r0 = 0.2 + 0.1 * unit(rng), r1 = 0.15 + 0.1 * unit(rng);
-    d.nodes = {{Vec3(0.0), r0}, {Vec3(0.3 + 0.2 * unit(rng), 0.3 + 0.2 * unit(rng), 0.1 * unit(rng)), r1}};
-    const double b = 0.05 + 0.03 * unit(rng);
-    d.beams = {{0, 1, 0, 0, 0, b, b}, {0, 0, 1, 0, 0, b, 0.9 * b}, {0, 1, 0, 0, 1, b, b}, {1, 0, 1, 0, 0, b, b}};
-    d.counts = {2 + static_cast<std::int64_t>(trial % 2), 2, 1};
-    d.u = {Similarity::swirl(0.04 * unit(rng), {0, 0, 1}, {0.5, -6, 0}, 1.0 + 0.03 * unit(rng)) *
-           Similarity::translation({1, 0, 0})};
-    d.v = {Similarity::translation({0, 1, 0})};
-    d.w = {Similarity::translation({0, 0, 1})};
-    const Lattice lat(d);
+    const Lattice lat(test::two_close_nodes(rng, 0.05, 0.03, 2 + trial % 2));
     const HubOverlapReport report = check_hub_overlaps(lat);
     if (report.overlap_count == 0) continue;
     try {

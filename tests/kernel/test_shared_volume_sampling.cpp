@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <random>
 
-#include "brick_definition.hpp"
+#include "lattice_test_shapes.hpp"
 #include "properties/shared_volume_sampling.hpp"
 #include "steady/core/constants.hpp"
 #include "steady/lattice/hub.hpp"
@@ -86,22 +86,11 @@ TEST(SharedVolumeSampling, ThreeBallsCountWhatTheyShareTwice) {
 }
 
 TEST(SharedVolumeSampling, CrowdedLatticesAgreeWithPointSampling) {
-  // Nodes near each other with thick beams: balls meet beams and beams meet beams of other hubs, in random ways.
+  // Nodes near each other with thicker beams than HubUnion's: balls meet beams and beams meet beams of other hubs.
   std::mt19937_64 rng(2027);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
   int compared = 0;
   for (int trial = 0; trial < 6; ++trial) {
-    test::BrickDefinition d;
-    const double r0 = 0.2 + 0.1 * unit(rng), r1 = 0.15 + 0.1 * unit(rng);
-    d.nodes = {{Vec3(0.0), r0}, {Vec3(0.3 + 0.2 * unit(rng), 0.3 + 0.2 * unit(rng), 0.1 * unit(rng)), r1}};
-    const double b = 0.08 + 0.08 * unit(rng);
-    d.beams = {{0, 1, 0, 0, 0, b, b}, {0, 0, 1, 0, 0, b, 0.9 * b}, {0, 1, 0, 0, 1, b, b}, {1, 0, 1, 0, 0, b, b}};
-    d.counts = {2, 2, 1};
-    d.u = {Similarity::swirl(0.04 * unit(rng), {0, 0, 1}, {0.5, -6, 0}, 1.0 + 0.03 * unit(rng)) *
-           Similarity::translation({1, 0, 0})};
-    d.v = {Similarity::translation({0, 1, 0})};
-    d.w = {Similarity::translation({0, 0, 1})};
-    const Lattice lat(d);
+    const Lattice lat(test::two_close_nodes(rng, 0.08, 0.08, 2));
     if (check_hub_overlaps(lat).overlap_count == 0) continue;
     const std::vector<Hub> hubs = all_hubs(lat);
     const auto [lines, sigma] = sampled_shared_volume(hubs, 100000, 3 + trial);
