@@ -12,7 +12,8 @@
 // 2. Otherwise the overlapping hubs fall into clusters (connected components of the "overlaps" relation); each
 //    cluster's union is computed with OpenCASCADE (each hub fused from its ball and stump frustums, then the
 //    hubs fused, integrated by BRepGProp to 1e-10 relative), and the properties become
-//        sum over all hubs  +  sum over clusters of ( union of the cluster's hubs  -  sum of its hubs ).
+//        sum over all hubs  +  sum over clusters of ( union of the cluster's hubs  -  sum of its hubs ),
+//    the cluster's hubs measured as fused, so that a hub's own Fuse error cancels where it meets no other hub.
 //    Hubs outside every cluster have disjoint interiors from everything else, so this is exact when the Fuse
 //    is. The Fuse is checked before it is trusted: each hub's solid against its exact volume (a crowded hub's
 //    Fuse has come back valid and 8 % short), the union a valid solid with a volume between the largest hub's
