@@ -24,15 +24,7 @@ Hub lone_ball(const Vec3& center, double radius) {
 
 // Plain sampling: uniform points of the box around all hubs, each counting (hubs holding it - 1) where positive.
 std::pair<double, double> point_sampled_shared_volume(const std::vector<Hub>& hubs, int samples, std::uint64_t seed) {
-  Vec3 lo(1e300), hi(-1e300);
-  for (const Hub& h : hubs) {
-    lo = glm::min(lo, h.ball.center - Vec3(h.ball.radius));
-    hi = glm::max(hi, h.ball.center + Vec3(h.ball.radius));
-    for (const Stump& s : h.stumps) {
-      lo = glm::min(lo, s.cut.center - Vec3(s.cut.radius));
-      hi = glm::max(hi, s.cut.center + Vec3(s.cut.radius));
-    }
-  }
+  const auto [lo, hi] = hubs_bounds(hubs);
   std::mt19937_64 random(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   double sum = 0.0, squares = 0.0;

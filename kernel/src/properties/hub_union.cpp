@@ -16,7 +16,6 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <limits>
 #include <numeric>
 #include <string>
 #include <tuple>
@@ -60,16 +59,8 @@ std::vector<TopoDS_Shape> hub_pieces(const Hub& hub, const Vec3& origin) {
 // The diagonal of a box around the hubs (translated by -origin; their balls and cut disks): the scale of the
 // Fuse's fuzzy values.
 double hubs_extent(const std::vector<Hub>& hubs) {
-  Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
-  for (const Hub& h : hubs) {
-    lo = glm::min(lo, h.ball.center - Vec3(h.ball.radius));
-    hi = glm::max(hi, h.ball.center + Vec3(h.ball.radius));
-    for (const Stump& s : h.stumps) {
-      lo = glm::min(lo, s.cut.center - Vec3(s.cut.radius));
-      hi = glm::max(hi, s.cut.center + Vec3(s.cut.radius));
-    }
-  }
-  return glm::length(hi - lo);
+  const auto bounds = hubs_bounds(hubs);
+  return glm::length(bounds.second - bounds.first);
 }
 
 struct CutPlane {

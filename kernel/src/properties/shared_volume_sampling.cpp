@@ -2,11 +2,25 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "steady/lattice/broad_phase.hpp"
 
 namespace steady {
+
+std::pair<Vec3, Vec3> hubs_bounds(const std::vector<Hub>& hubs) {
+  Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  for (const Hub& h : hubs) {
+    lo = glm::min(lo, h.ball.center - Vec3(h.ball.radius));
+    hi = glm::max(hi, h.ball.center + Vec3(h.ball.radius));
+    for (const Stump& s : h.stumps) {
+      lo = glm::min(lo, s.cut.center - Vec3(s.cut.radius));
+      hi = glm::max(hi, s.cut.center + Vec3(s.cut.radius));
+    }
+  }
+  return {lo, hi};
+}
 
 bool inside_hub(const Hub& h, const Vec3& p) {
   if (glm::dot(p - h.ball.center, p - h.ball.center) <= h.ball.radius * h.ball.radius) return true;

@@ -12,6 +12,9 @@
 
 namespace steady {
 
+// A box around the hubs: their balls and cut disks (each disk boxed by its radius, which is enough).
+std::pair<Vec3, Vec3> hubs_bounds(const std::vector<Hub>& hubs);
+
 // Whether p lies in the hub: its ball, or a stump (the hull of the beam's end ball and the stump's cut disk).
 bool inside_hub(const Hub& h, const Vec3& p);
 
