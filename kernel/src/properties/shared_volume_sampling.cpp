@@ -22,15 +22,28 @@ std::pair<Vec3, Vec3> hubs_bounds(const std::vector<Hub>& hubs) {
   return {lo, hi};
 }
 
+namespace {
+
+// Where a stump's frustum lies along its axis: from where its cone touches the end ball to the cut. False when the
+// stump holds nothing beyond its ball (one end ball inside the other, or the cut before that plane).
+bool stump_span(const Stump& s, double& from, double& to) {
+  if (!s.cone.has_lateral_surface()) return false;
+  from = s.cone.ra * s.cone.sin_phi;
+  to = s.cut_position;
+  return to >= from;
+}
+
+}  // namespace
+
 bool inside_hub(const Hub& h, const Vec3& p) {
   if (glm::dot(p - h.ball.center, p - h.ball.center) <= h.ball.radius * h.ball.radius) return true;
   for (const Stump& s : h.stumps) {
-    const BeamCone& cone = s.cone;
-    if (!cone.has_lateral_surface()) continue;
-    const Vec3 d = p - cone.a;
-    const double t = glm::dot(d, cone.axis);
-    if (t < cone.ra * cone.sin_phi || t > s.cut_position) continue;
-    const double r = cone.radius_at(t);
+    double from = 0.0, to = 0.0;
+    if (!stump_span(s, from, to)) continue;
+    const Vec3 d = p - s.cone.a;
+    const double t = glm::dot(d, s.cone.axis);
+    if (t < from || t > to) continue;
+    const double r = s.cone.radius_at(t);
     if (glm::dot(d, d) - t * t <= r * r) return true;
   }
   return false;
@@ -62,11 +75,9 @@ std::vector<std::pair<int, Box>> piece_boxes(const Hub& h) {
   const Vec3 reach(h.ball.radius);
   std::vector<std::pair<int, Box>> boxes{{0, {h.ball.center - reach, h.ball.center + reach}}};
   for (std::size_t k = 0; k < h.stumps.size(); ++k) {
-    const Stump& s = h.stumps[k];
-    const BeamCone& cone = s.cone;
-    if (!cone.has_lateral_surface()) continue;
-    const double t0 = cone.ra * cone.sin_phi, t1 = s.cut_position;
-    if (!(t1 >= t0)) continue;
+    const BeamCone& cone = h.stumps[k].cone;
+    double t0 = 0.0, t1 = 0.0;
+    if (!stump_span(h.stumps[k], t0, t1)) continue;
     boxes.emplace_back(static_cast<int>(k) + 1,
                        hull(disk_box(cone.a + t0 * cone.axis, cone.axis, cone.radius_at(t0)),
                             disk_box(cone.a + t1 * cone.axis, cone.axis, cone.radius_at(t1))));
@@ -130,8 +141,9 @@ void piece_crossings(const Hub& h, int piece, const Vec3& origin, std::vector<do
   // |d|^2 - t^2 - r(t)^2 with d = d0 + s e, t = t0 + s tau, r = rho0 - rho1 s.
   roots(1.0 - tau * tau - rho1 * rho1, glm::dot(d0, e) - t0 * tau + rho0 * rho1,
         glm::dot(d0, d0) - t0 * t0 - rho0 * rho0);
-  if (tau != 0.0)
-    for (double plane : {cone.ra * cone.sin_phi, stump.cut_position}) out.push_back((plane - t0) / tau);
+  double from = 0.0, to = 0.0;
+  if (tau != 0.0 && stump_span(stump, from, to))
+    for (double plane : {from, to}) out.push_back((plane - t0) / tau);
 }
 
 }  // namespace

@@ -17,7 +17,7 @@
 //    Hubs outside every cluster have disjoint interiors from everything else, so this is exact when the Fuse
 //    is. The Fuse is checked before it is trusted: each hub's solid against its exact volume (a crowded hub's
 //    Fuse has come back valid and 8 % short), the union a valid solid with a volume between the largest hub's
-//    and the sum, and the volume the hubs share (sum less union) within 6 standard errors of an estimate that
+//    and the sum, and the volume the hubs share (sum less union) within 5 standard errors of an estimate that
 //    integrates along lines through where their pieces meet (shared_volume_sampling.hpp). Each Fuse is retried
 //    (checked_fuse.hpp) until a result passes.
 // Areas exclude the cut disks (between a hub and its neighbour across a beam's cut: inside the lattice).
