@@ -12,6 +12,7 @@
 #include <gp_Trsf.hxx>
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "brep/hub_core.hpp"
@@ -40,10 +41,18 @@ struct HubGroup {
 // `radius` and turned by `rotation`.
 gp_Trsf hub_placement(const Vec3& center, double radius, const Mat3& rotation);
 
+// The volume the members' closed cores share (the sum of their volumes less their union's) by their own
+// definition: the ball, and each stump's cone from where it touches its end ball up to the collar, but nothing of
+// a cone beyond its collar disk. Integrated along lines where the cores meet (properties/shared_volume_sampling.hpp;
+// a fixed seed, so runs repeat); returns the estimate and its standard error.
+std::pair<double, double> sampled_shared_core_volume(const std::vector<GroupMember>& members, std::uint64_t seed);
+
 // Fuses the members' closed cores and checks the result: done without errors, one valid solid, every outer collar
 // disk found untouched (a planar face bounded by that collar circle alone), and the volume it encloses within the
-// bounds of a union (no less than the largest member, no more than their sum) and within 6 sigma of sampling the
-// members' own definition (ball, and each stump's cone up to its collar). Where a check fails, the Fuse is tried
+// bounds of a union (no less than the largest member, no more than their sum) and equal, within 5 standard errors and
+// 1e-7 of their sum, to the cores' volumes less the volume they share by their own definition (ball, and each
+// stump's cone up to its collar), integrated along lines where they meet (properties/shared_volume_sampling.hpp).
+// Where a check fails, the Fuse is tried
 // again with small fuzzy values. Throws InvalidInput (field "hub") with the first failure when all fail, naming the
 // group as "the N hubs <why>". Every Fuse (the retries too) reports to `progress` and stops at OpenCASCADE's next
 // UserBreak check once it is cancelled; the call then throws Cancelled (never a partial shape). A Fuse grows about

@@ -35,18 +35,24 @@ bool stump_span(const Stump& s, double& from, double& to) {
 
 }  // namespace
 
-bool inside_hub(const Hub& h, const Vec3& p) {
-  if (glm::dot(p - h.ball.center, p - h.ball.center) <= h.ball.radius * h.ball.radius) return true;
+bool inside_hub(const Hub& h, const Vec3& p, HubReading reading) {
+  const bool closed = reading == HubReading::ClosedAtCuts;
+  bool inside = glm::dot(p - h.ball.center, p - h.ball.center) <= h.ball.radius * h.ball.radius;
+  if (inside && !closed) return true;
   for (const Stump& s : h.stumps) {
+    if (!s.cone.has_lateral_surface()) continue;
     double from = 0.0, to = 0.0;
-    if (!stump_span(s, from, to)) continue;
+    stump_span(s, from, to);
     const Vec3 d = p - s.cone.a;
     const double t = glm::dot(d, s.cone.axis);
-    if (t < from || t > to) continue;
+    if (t < from || (t > to && !closed)) continue;
     const double r = s.cone.radius_at(t);
-    if (glm::dot(d, d) - t * t <= r * r) return true;
+    if (!(glm::dot(d, d) - t * t <= r * r)) continue;
+    if (t > to) return false;  // closed at the cut, and beyond its disk: the beam's, even inside the ball
+    if (!closed) return true;
+    inside = true;
   }
-  return false;
+  return inside;
 }
 
 namespace {
@@ -113,42 +119,55 @@ std::vector<Box> meeting_regions(const std::vector<Piece>& pieces, std::size_t h
   return regions;
 }
 
-// Where the line p(s) = origin + s z may cross a piece's boundary: the roots of the sphere's or the cone's quadric
-// and the frustum's two planes. A superset does no harm: the caller tests each stretch between them.
-void piece_crossings(const Hub& h, int piece, const Vec3& origin, std::vector<double>& out) {
-  const Vec3 e(0.0, 0.0, 1.0);
-  auto roots = [&](double a, double b, double c) {  // a s^2 + 2 b s + c = 0
-    if (std::abs(a) <= 1e-14 * (std::abs(b) + std::abs(c)) + 1e-300) {
-      if (b != 0.0) out.push_back(-0.5 * c / b);
-      return;
-    }
-    const double disc = b * b - a * c;
-    if (disc < 0.0) return;
-    const double q = -(b + std::copysign(std::sqrt(disc), b));
-    out.push_back(q / a);
-    if (q != 0.0) out.push_back(c / q);
-  };
-  if (piece == 0) {
-    const Vec3 d0 = origin - h.ball.center;
-    roots(1.0, glm::dot(d0, e), glm::dot(d0, d0) - h.ball.radius * h.ball.radius);
+// The roots of a s^2 + 2 b s + c = 0, appended to `out`.
+void quadratic_roots(double a, double b, double c, std::vector<double>& out) {
+  if (std::abs(a) <= 1e-14 * (std::abs(b) + std::abs(c)) + 1e-300) {
+    if (b != 0.0) out.push_back(-0.5 * c / b);
     return;
   }
-  const Stump& stump = h.stumps[static_cast<std::size_t>(piece - 1)];
+  const double disc = b * b - a * c;
+  if (disc < 0.0) return;
+  const double q = -(b + std::copysign(std::sqrt(disc), b));
+  out.push_back(q / a);
+  if (q != 0.0) out.push_back(c / q);
+}
+
+// Where the line origin + s z crosses the stump's cone and the planes of its span (where the cone touches its end
+// ball, the cut).
+void stump_crossings(const Stump& stump, const Vec3& origin, std::vector<double>& out) {
+  if (!stump.cone.has_lateral_surface()) return;
+  const Vec3 e(0.0, 0.0, 1.0);
   const BeamCone& cone = stump.cone;
   const Vec3 d0 = origin - cone.a;
   const double t0 = glm::dot(d0, cone.axis), tau = glm::dot(e, cone.axis);
   const double rho0 = (cone.ra - t0 * cone.sin_phi) / cone.cos_phi, rho1 = tau * cone.sin_phi / cone.cos_phi;
   // |d|^2 - t^2 - r(t)^2 with d = d0 + s e, t = t0 + s tau, r = rho0 - rho1 s.
-  roots(1.0 - tau * tau - rho1 * rho1, glm::dot(d0, e) - t0 * tau + rho0 * rho1,
-        glm::dot(d0, d0) - t0 * t0 - rho0 * rho0);
+  quadratic_roots(1.0 - tau * tau - rho1 * rho1, glm::dot(d0, e) - t0 * tau + rho0 * rho1,
+                  glm::dot(d0, d0) - t0 * t0 - rho0 * rho0, out);
   double from = 0.0, to = 0.0;
-  if (tau != 0.0 && stump_span(stump, from, to))
+  stump_span(stump, from, to);
+  if (tau != 0.0)
     for (double plane : {from, to}) out.push_back((plane - t0) / tau);
+}
+
+// Where the line origin + s z may cross a piece's boundary: the roots of the sphere's or the cone's quadric and the
+// frustum's two planes; for the ball of a hub closed at its cuts, also every stump's (what lies beyond a cut is
+// taken out of the ball). A superset does no harm: the caller tests each stretch between them.
+void piece_crossings(const Hub& h, int piece, HubReading reading, const Vec3& origin, std::vector<double>& out) {
+  if (piece > 0) {
+    stump_crossings(h.stumps[static_cast<std::size_t>(piece - 1)], origin, out);
+    return;
+  }
+  const Vec3 d0 = origin - h.ball.center;
+  quadratic_roots(1.0, d0.z, glm::dot(d0, d0) - h.ball.radius * h.ball.radius, out);
+  if (reading == HubReading::ClosedAtCuts)
+    for (const Stump& s : h.stumps) stump_crossings(s, origin, out);
 }
 
 }  // namespace
 
-std::pair<double, double> sampled_shared_volume(const std::vector<Hub>& hubs, int lines, std::uint64_t seed) {
+std::pair<double, double> sampled_shared_volume(const std::vector<Hub>& hubs, int lines, std::uint64_t seed,
+                                                HubReading reading) {
   std::vector<Piece> pieces;
   for (std::size_t k = 0; k < hubs.size(); ++k)
     for (const auto& [index, box] : piece_boxes(hubs[k])) pieces.push_back({k, index, box});
@@ -183,7 +202,7 @@ std::pair<double, double> sampled_shared_volume(const std::vector<Hub>& hubs, in
       for (const Box* other : neighbours)
         if (x >= other->lo.x && x <= other->hi.x && y >= other->lo.y && y <= other->hi.y)
           cuts.insert(cuts.end(), {other->lo.z, other->hi.z});
-      for (const Piece* p : near) piece_crossings(hubs[p->hub], p->index, origin, cuts);
+      for (const Piece* p : near) piece_crossings(hubs[p->hub], p->index, reading, origin, cuts);
       std::sort(cuts.begin(), cuts.end());
       double sum = 0.0;
       for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
@@ -191,7 +210,7 @@ std::pair<double, double> sampled_shared_volume(const std::vector<Hub>& hubs, in
         if (!(b > a)) continue;
         const Vec3 mid(x, y, 0.5 * (a + b));
         int holding = 0;
-        for (std::size_t k : near_hubs) holding += inside_hub(hubs[k], mid) ? 1 : 0;
+        for (std::size_t k : near_hubs) holding += inside_hub(hubs[k], mid, reading) ? 1 : 0;
         if (holding < 2) continue;
         int covering = 0;
         for (const Box* other : neighbours) covering += holds(*other, mid) ? 1 : 0;
