@@ -22,6 +22,7 @@
 
 #include "steady/core/errors.hpp"
 #include "lattice/hub_collars.hpp"
+#include "properties/caps_past_cuts.hpp"
 #include "properties/checked_fuse.hpp"
 #include "properties/hub_solid.hpp"
 #include "properties/shared_volume_sampling.hpp"
@@ -302,12 +303,20 @@ HubUnionCorrection hub_union_correction(const Lattice& lattice, const std::vecto
     std::vector<Hub> members;
     std::vector<CutPlane> cuts;
     MassMoments hub_sum;  // of the hubs as fused and measured
+    MassMoments caps;     // of their balls beyond their cuts: in the Fuse's hubs, not in hub_properties'
     double largest = 0.0;
     for (std::int64_t n : clusters[c]) {
       const Hub h = hub(lattice, nodes[n]);
       const HubProperties p = hub_properties(hub_shape(h), options);
-      MeasuredHub measured = measured_hub_solid(h, reference, p.moments.volume, tolerance);
+      std::string refusal;
+      SimilarityTransform shift;
+      shift.translation = h.ball.center - reference;
+      const MassMoments hub_caps = transformed(caps_past_cuts(h, refusal), shift);
+      if (!refusal.empty())
+        throw std::runtime_error("hub union: the hub of " + to_string(h.node) + " cannot be measured: " + refusal);
+      MeasuredHub measured = measured_hub_solid(h, reference, p.moments.volume + hub_caps.volume, tolerance);
       hub_sum += measured.moments;
+      caps += hub_caps;
       largest = std::max(largest, measured.moments.volume);
       hub_solids.push_back(std::move(measured.solid));
       for (const Stump& s : h.stumps) cuts.push_back({s.cut.center - reference, s.cut.normal, s.cut.radius});
@@ -336,7 +345,7 @@ HubUnionCorrection hub_union_correction(const Lattice& lattice, const std::vecto
                " +- " + std::to_string(sigma);
       return std::string();
     }, what);
-    corrections[c] = u - hub_sum;
+    corrections[c] = u - hub_sum + caps;  // the sum over hubs holds hub_properties', without the caps
     volumes[c] = u.volume;
     progress.advance();
   });

@@ -15,7 +15,10 @@
 //        sum over all hubs  +  sum over clusters of ( union of the cluster's hubs  -  sum of its hubs ),
 //    the cluster's hubs measured as fused, so that a hub's own Fuse error cancels where it meets no other hub.
 //    Hubs outside every cluster have disjoint interiors from everything else, so this is exact when the Fuse
-//    is. The Fuse is checked before it is trusted: each hub's solid against its exact volume (a crowded hub's
+//    is. A hub fused keeps its ball whole where hub_properties ends it at a cut inside the ball (a ball past its
+//    beam's mid-plane): its spherical caps beyond those cuts are added to its exact properties
+//    (caps_past_cuts.hpp) for the check below and taken back from the correction.
+//    The Fuse is checked before it is trusted: each hub's solid against its exact volume (a crowded hub's
 //    Fuse has come back valid and 8 % short), the union a valid solid with a volume between the largest hub's
 //    and the sum, and the volume the hubs share (sum less union) within 5 standard errors of an estimate that
 //    integrates along lines through where their pieces meet (shared_volume_sampling.hpp). Each Fuse is retried

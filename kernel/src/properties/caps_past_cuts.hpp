@@ -1,0 +1,19 @@
+#pragma once
+// The caps of a node ball beyond its hub's cut disks. A beam shorter than its two balls (the lattice is not clean
+// there) has each ball reach past its mid-plane cut: hub_properties ends the hub at the cut disk, the ball's cap
+// beyond it being the beam's far half's, while the hub's Fuse (hub_union.cpp) keeps its ball whole. The Fuse is
+// compared with, and the cluster's correction takes away, the hub's exact properties plus these caps.
+#include <string>
+
+#include "steady/lattice/hub.hpp"
+#include "steady/properties/mass_moments.hpp"
+
+namespace steady {
+
+// The moments (about the node center) of the parts of the hub's ball beyond its stumps' cut planes: spherical caps
+// in closed form, counted where the Fuse's whole ball adds them to the hub of hub_properties. Their sum is that
+// difference only when no two caps meet and no cap lies in the directions (from the node center) where another
+// stump leaves the ball; otherwise `refusal` says which and the moments are not to be used.
+MassMoments caps_past_cuts(const Hub& h, std::string& refusal);
+
+}  // namespace steady
