@@ -10,10 +10,10 @@
 
 namespace steady {
 
-// The moments (about the node center) of the parts of the hub's ball beyond its stumps' cut planes: spherical caps
-// in closed form, counted where the Fuse's whole ball adds them to the hub of hub_properties. Their sum is that
-// difference only when no two caps meet and no cap lies in the directions (from the node center) where another
-// stump leaves the ball; otherwise `refusal` says which and the moments are not to be used.
+// The moments (about the node center) of what the Fuse's whole ball adds to the hub of hub_properties: the parts of
+// the ball beyond its stumps' cut planes (spherical caps, in closed form), less where hub_properties keeps them (in
+// the directions in which the cut disk lies inside a neighbouring stump, whose exit cap overlaps this stump's:
+// integrated over the cap's meridians). When two caps meet, `refusal` says so and the moments are not to be used.
 MassMoments caps_past_cuts(const Hub& h, std::string& refusal);
 
 }  // namespace steady
