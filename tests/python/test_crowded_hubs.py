@@ -26,12 +26,11 @@ def check_sweep(cases):
 
 def test_short_sweep_builds_every_crowded_design_or_says_what_to_change():
     counts = check_sweep(crowded_sweep.short_cases())
-    # Every design of the short sweep builds (measured: 34 of 36 to the exact volume, 2 whose properties cannot be
-    # computed checked by sampling: BCC in the hull model with a screw and the octet in the hull model with a taper,
-    # whose beams meet beams of other nodes and which was refused as not clean before its hubs were fused in
-    # groups); before tight collars and groups of hubs, 6 were refused as too short; before the properties' Fuses
-    # were retried and checked where the hubs meet, 32 were built.
-    assert counts["too short"] == 0 and counts["foreign"] == 0 and counts["built"] >= 34, counts
+    # Every design of the short sweep builds (measured: 35 of 36 to the exact volume; 1 whose properties cannot be
+    # computed, checked by sampling: BCC in the hull model with a screw, whose hubs' Fuses are 1e-5 off at tangent
+    # contacts); before tight collars and groups of hubs, 6 were refused as too short; before the properties' Fuses
+    # were retried and checked where the hubs meet, 32 were built, 34 before hubs were fused in other layouts.
+    assert counts["too short"] == 0 and counts["foreign"] == 0 and counts["built"] >= 35, counts
 
 
 @pytest.mark.skipif(not os.environ.get("STEADY_LONG_TESTS"), reason="set STEADY_LONG_TESTS=1")
