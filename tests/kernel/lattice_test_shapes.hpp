@@ -2,8 +2,10 @@
 // Random small lattices for the property tests: steps close to unit translations (so beams stay long
 // compared with the balls), of every kind, with borders, both beam models and omitted nodes.
 #include <random>
+#include <string>
 
 #include "steady/lattice/lattice.hpp"
+#include "steady/lattice/presets.hpp"
 #include "test_support.hpp"
 #include "brick_definition.hpp"
 
@@ -81,6 +83,26 @@ inline BrickDefinition two_close_nodes(std::mt19937_64& rng, double beam, double
   d.counts = {count_u, 2, 1};
   d.u = {Similarity::swirl(0.04 * unit(rng), {0, 0, 1}, {0.5, -6, 0}, 1.0 + 0.03 * unit(rng)) *
          Similarity::translation({1, 0, 0})};
+  d.v = {Similarity::translation({0, 1, 0})};
+  d.w = {Similarity::translation({0, 0, 1})};
+  return d;
+}
+
+// A preset cell (cells of 1) with nodes `node_fraction` of its neighbour distance and every beam `beam_ratio` of
+// its node radius, `counts` cells, translation steps (callers replace the ones they grade): the crowded sweep's
+// designs (tests/python/crowded_sweep.py).
+inline BrickDefinition preset_brick(const std::string& name, double node_fraction, double beam_ratio,
+                                    const Counts& counts) {
+  const PresetCell& cell = preset_cell(name);
+  const double node = node_fraction * cell.neighbour_distance;
+  BrickDefinition d;
+  for (const Vec3& b : cell.basis) d.nodes.push_back({b, node});
+  for (BeamPattern p : preset_beam_patterns(cell)) {
+    p.from_radius = p.to_radius = beam_ratio * node;
+    d.beams.push_back(p);
+  }
+  d.counts = counts;
+  d.u = {Similarity::translation({1, 0, 0})};
   d.v = {Similarity::translation({0, 1, 0})};
   d.w = {Similarity::translation({0, 0, 1})};
   return d;

@@ -9,7 +9,6 @@
 #include "occ_reference.hpp"
 #include "steady/core/errors.hpp"
 #include "steady/lattice/hub.hpp"
-#include "steady/lattice/presets.hpp"
 #include "steady/query/hub_overlaps.hpp"
 #include "steady/properties/hub_union.hpp"
 #include "properties/hub_solid.hpp"
@@ -93,18 +92,8 @@ TEST(HubUnion, HubsWhoseFuseLosesAPieceAreFusedInAnotherLayout) {
   // of them lost up to 15 % in every order (0.344774 for 0.404092) and the properties were refused; a turned
   // sphere or frustums starting further out fuse them whole (the lattice's properties are then 8.3e-9 from its
   // B-rep: crowded_sweep.py --long). Every hub's solid against its exact volume.
-  const PresetCell& cell = preset_cell("BCC");
-  const double node = 0.45 * cell.neighbour_distance;
-  test::BrickDefinition d;
-  for (const Vec3& b : cell.basis) d.nodes.push_back({b, node});
-  for (BeamPattern p : preset_beam_patterns(cell)) {
-    p.from_radius = p.to_radius = 0.8 * node;
-    d.beams.push_back(p);
-  }
-  d.counts = {2, 2, 2};
+  test::BrickDefinition d = test::preset_brick("BCC", 0.45, 0.8, {2, 2, 2});
   d.u = {Similarity::swirl(0.03, {1, 0, 0}, {-20, 0.5, 0.5}, 1.05)};
-  d.v = {Similarity::translation({0, 1, 0})};
-  d.w = {Similarity::translation({0, 0, 1})};
   const Lattice lat(d);
   for (const NodeId& n : {NodeId{1, 0, 0, 1}, NodeId{1, 1, 0, 0}, NodeId{1, 1, 1, 0}, NodeId{1, 0, 1, 1}}) {
     const Hub h = hub(lat, n);

@@ -17,6 +17,7 @@
 #include <tbb/global_control.h>
 
 #include "brick_definition.hpp"
+#include "lattice_test_shapes.hpp"
 #include "test_support.hpp"
 #include "steady/core/errors.hpp"
 #include "steady/lattice/flat_lattice.hpp"
@@ -193,18 +194,8 @@ TEST(TrimmedMesh, CrowdedAndHullModelHubs) {
 // nodes meet nodes they share no beam with, so its hubs are meshed as united groups (mesh_groups.hpp), and a group
 // the surface crosses goes through the band's Boolean whole.
 TEST(TrimmedMesh, HubsUnitedInGroupsAreTrimmedAsOnePiece) {
-  const PresetCell& cell = preset_cell("diamond");
-  const double node = 0.45 * cell.neighbour_distance;
-  test::BrickDefinition d;
-  for (const Vec3& b : cell.basis) d.nodes.push_back({b, node});
-  for (BeamPattern p : preset_beam_patterns(cell)) {
-    p.from_radius = p.to_radius = 0.5 * node;
-    d.beams.push_back(p);
-  }
-  d.counts = {3, 3, 3};
+  test::BrickDefinition d = test::preset_brick("diamond", 0.45, 0.5, {3, 3, 3});
   d.u = {Similarity::dilation(1.05, {-20.0, 0.5, 0.5})};
-  d.v = {Similarity::translation({0, 1, 0})};
-  d.w = {Similarity::translation({0, 0, 1})};
   const Lattice diamond(d);
   LatticeMeshStats whole;
   lattice_mesh(diamond, {0.01}, &whole);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "properties/gauss_kronrod.hpp"
+#include "properties/quadratic_roots.hpp"
 #include "steady/core/constants.hpp"
 #include "steady/lattice/convex_distance.hpp"
 #include "steady/properties/hub_properties.hpp"
@@ -57,19 +58,6 @@ CapIntegrals meridian_antiderivative(double R, double d, double theta) {
   a[kCapSecondWW] = (R5 * (c * c * c / 3.0 - c) - d5 * (0.25 / (c * c * c * c) - 0.5 / (c * c))) / 5.0;
   a[kCapArea] = -R * R * c;
   return a;
-}
-
-// The roots of a t^2 + 2 b t + c = 0, appended to `out`.
-void quadratic_roots(double a, double b, double c, std::vector<double>& out) {
-  if (std::abs(a) <= 1e-14 * (std::abs(b) + std::abs(c)) + 1e-300) {
-    if (b != 0.0) out.push_back(-0.5 * c / b);
-    return;
-  }
-  const double disc = b * b - a * c;
-  if (disc < 0.0) return;
-  const double q = -(b + std::copysign(std::sqrt(disc), b));
-  out.push_back(q / a);
-  if (q != 0.0) out.push_back(c / q);
 }
 
 // Where the cut disk's radius p(tau) = d n + tau w (0 <= tau <= tau_max, w unit across n; the ball at the origin)

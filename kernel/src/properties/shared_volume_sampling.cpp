@@ -5,6 +5,7 @@
 #include <limits>
 #include <random>
 
+#include "properties/quadratic_roots.hpp"
 #include "steady/lattice/broad_phase.hpp"
 
 namespace steady {
@@ -117,19 +118,6 @@ std::vector<Box> meeting_regions(const std::vector<Piece>& pieces, std::size_t h
       if (met && box_volume(region) > 0.0) regions.push_back(region);
     }
   return regions;
-}
-
-// The roots of a s^2 + 2 b s + c = 0, appended to `out`.
-void quadratic_roots(double a, double b, double c, std::vector<double>& out) {
-  if (std::abs(a) <= 1e-14 * (std::abs(b) + std::abs(c)) + 1e-300) {
-    if (b != 0.0) out.push_back(-0.5 * c / b);
-    return;
-  }
-  const double disc = b * b - a * c;
-  if (disc < 0.0) return;
-  const double q = -(b + std::copysign(std::sqrt(disc), b));
-  out.push_back(q / a);
-  if (q != 0.0) out.push_back(c / q);
 }
 
 // Where the line origin + s z crosses the stump's cone and the planes of its span (where the cone touches its end
