@@ -170,6 +170,19 @@ def test_a_cluster_fuse_off_by_3e_4_is_refused_where_the_hubs_meet():
     assert abs(p["volume"] / brep["volume"] - 1) < crowded_sweep.FUSED_REFERENCE_TOLERANCE, (p["volume"], brep)
 
 
+def test_properties_refused_at_tangent_hubs_say_what_to_change():
+    """The short sweep's BCC in the hull model with a screw: every Fuse of one hub is 1e-5 off where its beams touch
+    the ball tangentially, so properties() refuses; the message names the hub and says what to change, and the same
+    design with beams at 0.9 of the node is measured."""
+    with pytest.raises(RuntimeError) as refusal:
+        crowded_sweep.lattice("BCC", 0.35, None, "screw", (2, 2, 2)).properties()
+    message = str(refusal.value)
+    assert re.search(r"hub union: .*hub of \(\d+,\d+,\d+,\d+\)", message), message
+    assert "touch their balls tangentially" in message and "thinner than their nodes" in message, message
+    p = crowded_sweep.lattice("BCC", 0.35, 0.9, "screw", (2, 2, 2)).properties()
+    assert p["volume"] > 0
+
+
 def foreign_contacts(lat):
     return [i for i in lat.clean_check()["issues"] if i["kind"] != "circle_overlap"]
 
