@@ -128,9 +128,9 @@ TEST(SharedVolumeSampling, AHubClosedAtACutInsideItsBallLosesWhatLiesBeyondTheCu
 }
 
 TEST(SharedVolumeSampling, HubsClosedAtCutsInsideTheirBallsAgreeWithPointSampling) {
-  // Crowded lattices as above (beams up to 0.14, under the smaller node's 0.15) with every cut moved to a random place between the ball's center and the mid-plane
-  // (inside the ball for many): B-rep cores closed by tight collars (brep/hub_group.cpp), against points read the
-  // same way.
+  // Crowded lattices as above (beams up to 0.14, under the smaller node's 0.15) with every cut moved to a random
+  // place between the ball's center and the mid-plane (inside the ball for many): B-rep cores closed by tight
+  // collars (brep/hub_group.cpp), against points read the same way.
   std::mt19937_64 rng(2029);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   int compared = 0, changed = 0;
@@ -141,7 +141,8 @@ TEST(SharedVolumeSampling, HubsClosedAtCutsInsideTheirBallsAgreeWithPointSamplin
     for (Hub& h : hubs)
       for (Stump& s : h.stumps) move_cut(s, (0.2 + 0.8 * unit(rng)) * s.cut_position);
     const auto [lines, sigma] = sampled_shared_volume(hubs, 100000, 3 + trial, HubReading::ClosedAtCuts);
-    const auto [points, point_sigma] = point_sampled_shared_volume(hubs, 2000000, 17 + trial, HubReading::ClosedAtCuts);
+    const auto [points, point_sigma] =
+        point_sampled_shared_volume(hubs, 2000000, 17 + trial, HubReading::ClosedAtCuts);
     const auto [whole, whole_sigma] = sampled_shared_volume(hubs, 100000, 3 + trial);
     std::printf("[ report ] trial %d: lines %.7f +- %.1e, points %.7f +- %.1e; read whole %.7f\n", trial, lines,
                 sigma, points, point_sigma, whole);
