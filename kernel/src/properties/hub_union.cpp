@@ -159,6 +159,16 @@ std::string tangent_hint(const std::vector<Hub>& hubs) {
   return "";
 }
 
+// The moments (about the node center) that the hub's whole ball, as fused, adds to hub_properties' hub
+// (caps_past_cuts.hpp); throws std::runtime_error naming the hub where they cannot be had.
+MassMoments checked_caps(const Hub& h) {
+  std::string refusal;
+  const MassMoments caps = caps_past_cuts(h, refusal);
+  if (!refusal.empty())
+    throw std::runtime_error("hub union: the hub of " + to_string(h.node) + " cannot be measured: " + refusal);
+  return caps;
+}
+
 // Relative. Where beams touch their ball (the hull model) every Fuse of a screwed BCC hub is 1e-5 off (0.316582
 // for 0.316579), and its cluster's union then differs from the hubs' sum by 1e-6 more: refused, as it should be.
 constexpr double kHubFuseTolerance = 1e-6;
@@ -303,9 +313,7 @@ bool moved_cut_correction(const Lattice& lattice, const std::vector<NodeId>& ove
 }  // namespace
 
 TopoDS_Shape hub_solid(const Hub& hub, const Vec3& origin) {
-  std::string refusal;
-  const double exact = hub_properties(hub_shape(hub)).moments.volume + caps_past_cuts(hub, refusal).volume;
-  if (!refusal.empty()) throw std::runtime_error("hub union: the hub of " + to_string(hub.node) + ": " + refusal);
+  const double exact = hub_properties(hub_shape(hub)).moments.volume + checked_caps(hub).volume;
   return measured_hub_solid(hub, origin, exact, 1e-9).solid;
 }
 
@@ -355,12 +363,9 @@ HubUnionCorrection hub_union_correction(const Lattice& lattice, const std::vecto
     for (std::int64_t n : clusters[c]) {
       const Hub h = hub(lattice, nodes[n]);
       const HubProperties p = hub_properties(hub_shape(h), options);
-      std::string refusal;
       SimilarityTransform shift;
       shift.translation = h.ball.center - reference;
-      const MassMoments hub_caps = transformed(caps_past_cuts(h, refusal), shift);
-      if (!refusal.empty())
-        throw std::runtime_error("hub union: the hub of " + to_string(h.node) + " cannot be measured: " + refusal);
+      const MassMoments hub_caps = transformed(checked_caps(h), shift);
       MeasuredHub measured = measured_hub_solid(h, reference, p.moments.volume + hub_caps.volume, tolerance);
       hub_sum += measured.moments;
       caps += hub_caps;
