@@ -165,8 +165,10 @@ bool write_occ_step(const std::string& partial, const std::vector<StepPart>& par
   {
     Progress part(progress, 45);
     OccProgress occ(part);
-    if (!writer.Transfer(doc, STEPControl_AsIs, nullptr, occ.range())) return false;
-    occ.finish();  // the last chance to stop: the file is written below
+    const bool transferred = writer.Transfer(doc, STEPControl_AsIs, nullptr, occ.range());
+    // Cancelled when the progress stopped the transfer (it then answers false): a cancel, not a write failure.
+    occ.finish();  // also the last chance to stop: the file is written below
+    if (!transferred) return false;
   }
   make_reproducible(writer.ChangeWriter().Model());
   return writer.Write(partial.c_str()) == IFSelect_RetDone;
