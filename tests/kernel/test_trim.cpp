@@ -714,6 +714,13 @@ TEST(LatticePart, ProgressAndCancelForTextAndStep) {
   write_lattice_step(path, f, request);
   EXPECT_EQ(read_step_parts(path).size(), 2u);
   std::remove(path.c_str());
+  // A cancel while OpenCASCADE translates the shapes (a fraction from 0.05 to 0.5 of the writer's progress) is a
+  // cancel, not a failure to write (it was "cannot write a STEP file" when a stop by count fell there).
+  Recorder translating(0, 0.2);
+  EXPECT_THROW(write_step_assembly(path, {{"Lattice", brep_from_text(text, "text")}}, "Assembly", translating.progress),
+               Cancelled);
+  EXPECT_GT(translating.cancelled_at, 0u);
+  EXPECT_FALSE(std::ifstream(path).good()) << "a cancelled export wrote " << path;
 }
 
 }  // namespace
