@@ -92,6 +92,7 @@ void fill_stats(const steady::TrimStats& s, py::dict& d) {
   d["relaid_clusters"] = s.relaid_clusters;
   d["turned_clusters"] = s.turned_clusters;
   d["fuzzy_clusters"] = s.fuzzy_clusters;
+  d["merged_clusters"] = s.merged_clusters;
   d["holed_clusters"] = s.holed_clusters;
   d["rim_clusters"] = s.rim_clusters;
   d["rim_clusters_unclipped"] = s.rim_clusters_unclipped;
@@ -229,7 +230,8 @@ void bind_brep(py::module_& m) {
       "went: hubs inside/outside/crossing, band_clusters (local Booleans), moved_cuts (beams cut off their middle "
       "to keep clusters apart), retried_clusters and of those "
       "relaid_/turned_/fuzzy_clusters (fuzzy: clipped with a tolerance of 1e-4 to 1e-3 of the cluster's size, "
-      "exact only to that), holed_clusters (glued to the skin with no Boolean), rim_clusters (on the inner boundary's edges and seams: united with the skin by one Cut) and of those rim_clusters_unclipped (found before their Common), relaid_out and union_through_pores "
+      "exact only to that; merged: with the thin bands of cone between crowded hubs' collars merged into their "
+      "stumps first), holed_clusters (glued to the skin with no Boolean), rim_clusters (on the inner boundary's edges and seams: united with the skin by one Cut) and of those rim_clusters_unclipped (found before their Common), relaid_out and union_through_pores "
       "with their reasons, with 'bridge' kept_hubs, lost_neighbour_hubs, bridges, rerouted_bridges (of bridges, those "
       "whose route to the nearest wall point was blocked and took another), blocked_bridges (refused: on every route "
       "tried they would meet another kept element) and ambiguous_bridges (several nearest points), reseated_sphere_faces (sphere faces a Boolean left with a loop across the seam, which STEP readers find invalid, rebuilt on a frame whose seam clears their loops; kept_straddling_faces and kept_straddling_reason: those left as they were, and why; reseat_seconds), loose_edges (edges a Boolean left with a tolerance above 2e-7, approximations of where two quadrics meet) and retraced_edges (of those, given curves on the exact intersection), loosest_edge_before and loosest_edge_after (their largest tolerance), retrace_seconds, faces, volume (by Green's theorem on each face, to about 1e-12: FreeCAD's Shape.Volume can be 1e-3 off on crowded spheres), boolean_seconds, union_seconds. log: None or a callable log(message) receiving "

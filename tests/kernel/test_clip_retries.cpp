@@ -19,6 +19,7 @@
 
 #include "steady/brep/brep_io.hpp"
 #include "brep/clip_retries.hpp"
+#include "brep/merged_bands.hpp"
 
 using namespace steady;
 
@@ -38,9 +39,11 @@ TopoDS_Shape common(const TopoDS_Shape& cluster, const TopoDS_Shape& tool, const
   BRepBndLib::Add(cluster, box);
   const TopLoc_Location frame =
       turned_frame(attempt.frame, gp_Pnt((box.CornerMin().XYZ() + box.CornerMax().XYZ()) / 2.0));
+  const TopoDS_Shape argument = attempt.merged ? with_bands_merged(cluster) : cluster;
+  if (argument.IsNull()) return TopoDS_Shape();  // nothing merged: the kernel skips the attempt
   BRepAlgoAPI_Common op;
   TopTools_ListOfShape args, tools;
-  args.Append(cluster.Moved(frame));
+  args.Append(argument.Moved(frame));
   tools.Append(tool.Moved(frame));
   op.SetArguments(args);
   op.SetTools(tools);

@@ -9,9 +9,12 @@ namespace steady {
 const std::vector<ClipAttempt>& clip_retries() {
   static const std::vector<ClipAttempt> attempts = [] {
     std::vector<ClipAttempt> a;
-    for (const double fuzzy : {0.0, 1e-4, 1e-3})
+    for (const double fuzzy : {0.0, 1e-4, 1e-3}) {
       for (int frame = 0; frame < 3; ++frame)
         for (int layout = 0; layout < 2; ++layout) a.push_back({layout, frame, fuzzy});
+      if (fuzzy == 0.0)
+        for (int layout = 0; layout < 2; ++layout) a.push_back({layout, 0, 0.0, true});
+    }
     return a;
   }();
   return attempts;

@@ -10,7 +10,10 @@
 // - near-tangent contact: where the body's surface passes within about 1e-4 of a hub's size from one of its
 //   circles, OpenCASCADE cannot close the section loops (measured: 8e-5 on a hub of radius 0.25, the Common came
 //   out empty in every layout and frame); a `fuzzy` value, relative to the cluster's size, merges them. The edges
-//   it makes keep a tolerance of that size, so the exact attempts come first and the smaller value before the larger.
+//   it makes keep a tolerance of that size, so the exact attempts come first and the smaller value before the larger;
+// - thin bands of cone between two crowded hubs' collars, which the section with a curved body can miss (the BCC at
+//   beam/node 1.0 in a cylinder: the Common came out empty in every layout, frame and fuzzy value): `merged` clips
+//   the cluster with its bands merged into their stumps (merged_bands.hpp), after the exact attempts without.
 #include <TopLoc_Location.hxx>
 #include <gp_Pnt.hxx>
 
@@ -22,6 +25,7 @@ struct ClipAttempt {
   int layout;    // 0: the spheres' first layout, 1: the other one
   int frame;     // turned_frame(frame, ...)
   double fuzzy;  // OpenCASCADE's fuzzy value relative to the cluster's size; 0 for an exact Boolean
+  bool merged = false;  // the cluster's thin bands of cone merged into their stumps first
 };
 
 // Every attempt in the order they are tried, the first pass (layout 0, frame 0, exact) included.

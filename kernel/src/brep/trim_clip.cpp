@@ -22,6 +22,7 @@
 #include <stdexcept>
 
 #include "brep/clip_retries.hpp"
+#include "brep/merged_bands.hpp"
 #include "brep/occ_progress.hpp"
 #include "brep/trim_phases.hpp"
 #include "steady/brep/brep_io.hpp"
@@ -268,7 +269,7 @@ std::vector<std::vector<TopoDS_Face>> second_layout_faces(const ClipContext& c, 
 }
 
 struct RetryCounts {
-  std::atomic<std::int64_t> retried{0}, relaid{0}, turned{0}, fuzzy{0};
+  std::atomic<std::int64_t> retried{0}, relaid{0}, turned{0}, fuzzy{0}, merged{0};
 };
 
 // One failed cluster through clip_retries(); false when every attempt failed.
@@ -279,9 +280,13 @@ bool retry_cluster(const ClipContext& c, std::size_t k, const TopoDS_Shape (&lay
   const double size = std::sqrt(box.SquareExtent());
   const gp_Pnt center((box.CornerMin().XYZ() + box.CornerMax().XYZ()) / 2.0);
   const int cluster = static_cast<int>(k);
+  std::optional<TopoDS_Shape> merged[2];  // each layout with its bands merged, made when first tried
   for (const ClipAttempt& attempt : clip_retries()) {
-    if (attempt.layout == 0 && attempt.frame == 0 && attempt.fuzzy == 0.0) continue;  // the first pass
+    if (attempt.layout == 0 && attempt.frame == 0 && attempt.fuzzy == 0.0 && !attempt.merged) continue;  // first pass
     progress.check();
+    if (attempt.merged && !merged[attempt.layout]) merged[attempt.layout] = with_bands_merged(layouts[attempt.layout]);
+    const TopoDS_Shape& cluster_shape = attempt.merged ? *merged[attempt.layout] : layouts[attempt.layout];
+    if (cluster_shape.IsNull()) continue;  // no band to merge: the same as an attempt before
     const TopLoc_Location frame = turned_frame(attempt.frame, center);
     BRepAlgoAPI_Common op;
     if (attempt.fuzzy > 0.0) op.SetFuzzyValue(attempt.fuzzy * size);
@@ -289,18 +294,19 @@ bool retry_cluster(const ClipContext& c, std::size_t k, const TopoDS_Shape (&lay
     disks.use_layout(cluster, attempt.layout);
     const TopoDS_Shape tool_copy = brep_from_text(clips.tool_text, "body").Moved(frame);
     const std::optional<TopoDS_Shape> clipped =
-        try_boolean(op, layouts[attempt.layout].Moved(frame), tool_copy, clips.what, no_progress());
+        try_boolean(op, cluster_shape.Moved(frame), tool_copy, clips.what, no_progress());
     if (!clipped) continue;
     clips.results[k] = clipped->Moved(frame.Inverted());
     if (!disks.cluster_result_ok(op, clips.results[k], cluster, attempt.layout, frame)) continue;
     if (clips.cannot_be_empty[k] && is_empty(clips.results[k])) continue;
     disks.track(op, clips.results[k], cluster, frame);
     find_cut_faces(c, op, tool_copy, k, clips);
-    clips.unclipped[k] = layouts[attempt.layout];
+    clips.unclipped[k] = cluster_shape;
     ++counts.retried;
     counts.relaid += attempt.layout == 1;
     counts.turned += attempt.frame != 0;
     counts.fuzzy += attempt.fuzzy > 0.0;
+    counts.merged += attempt.merged;
     return true;
   }
   return false;
@@ -337,6 +343,7 @@ void retry_failed_clusters(const ClipContext& c, SeamPreference seams, CutEdges&
   stats.relaid_clusters += counts.relaid;
   stats.turned_clusters += counts.turned;
   stats.fuzzy_clusters += counts.fuzzy;
+  stats.merged_clusters += counts.merged;
 }
 
 void clip_rim_clusters(const ClipContext& c, SeamPreference seams, CutEdges& cuts, ClusterClips& clips,

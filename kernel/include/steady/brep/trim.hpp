@@ -61,6 +61,7 @@ struct TrimStats {
   std::int64_t relaid_clusters = 0;       //   with their spheres laid out the other way
   std::int64_t turned_clusters = 0;       //   in a turned frame
   std::int64_t fuzzy_clusters = 0;        //   with a fuzzy Common (1e-4 or 1e-3 of their size)
+  std::int64_t merged_clusters = 0;       //   with their thin bands of cone merged into the stumps beside them
   std::int64_t holed_clusters = 0;        // with a skin: clusters glued to it by holes in its inner faces, no
                                           // Boolean; the others:
   std::int64_t rim_clusters = 0;          //   on the inner boundary's edges, seams or poles: clipped and glued to
