@@ -145,7 +145,7 @@ TEST(Trim, CutsPlacedAnywhereBeyondTheStumpsStarts) {
   // Two crowded hubs (beams on a small ball: their exit circles overlap), built from cores with collars, and the
   // beam between them cut in two halves glued along their shared cut circle. The cut may go anywhere past the
   // starts stump_starts reports: just past them the two hubs build one valid solid with the volume they have
-  // when cut halfway; just before a crowded hub's collar the builder refuses the cut.
+  // when cut halfway; just before a crowded hub's collar the builder refuses the cut, naming that collar.
   const FlatLattice f = grid_lattice(3, 0.13);
   const std::vector<BeamFrustum> frustums = beam_frustums(f);
   const std::int64_t e = 0;  // from ball 0 to ball 1, along x
@@ -181,8 +181,17 @@ TEST(Trim, CutsPlacedAnywhereBeyondTheStumpsStarts) {
     EXPECT_EQ(solid_count(solid), 1);
     EXPECT_NEAR(test::occ_properties(solid).volume / halfway, 1.0, 1e-9);
   }
-  EXPECT_THROW(solid_with_cut_at(from - 0.01 * (to - from)), InvalidInput);
-  EXPECT_THROW(solid_with_cut_at(to + 0.01 * (to - from)), InvalidInput);
+  // Refused saying which collar the build found, so that the trim can place its cuts again (CollarPastCut).
+  for (const auto& [x, end] : {std::pair<double, int>{from - 0.01 * (to - from), 0}, {to + 0.01 * (to - from), 1}}) {
+    try {
+      solid_with_cut_at(x);
+      ADD_FAILURE() << "a cut inside a collar was built";
+    } catch (const CollarPastCut& past) {
+      EXPECT_EQ(past.beam, e);
+      EXPECT_EQ(past.end, end);
+      EXPECT_NEAR(past.collar, end == 0 ? from : frustums[e].cone.length - to, 1e-12);
+    }
+  }
   // Arguments that do not fit the lattice are named, not read past.
   EXPECT_THROW(stump_starts(f, frustums, std::vector<char>(3, 1), a), InvalidInput);
   EXPECT_THROW(stump_starts(f, frustums, sel.beams, f.ball_count()), InvalidInput);

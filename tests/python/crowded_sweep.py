@@ -7,9 +7,9 @@ whose properties cannot be computed (then checked against sampling its membershi
 different hubs meet (the clean check's business, not a hub's), is refused because a beam is too short for the
 collars of its two crowded hubs (the message must name the beam), or fails.
 
-`python3 crowded_sweep.py [--long] [--only SPEC] [--trim | --mesh | --trim --mesh | --properties]` prints every case
-and the counts (--only: a part of the sweep, see `only`; --trim: each design trimmed into a box with a skin
-instead, checked against sampling; --mesh: each design as a mesh, run_mesh_case; both: each design as a trimmed
+`python3 crowded_sweep.py [--long] [--only SPEC] [--trim | --trim-cylinder | --mesh | --trim --mesh | --properties]`
+prints every case and the counts (--only: a part of the sweep, see `only`; --trim: each design trimmed into a box
+with a skin instead, checked against sampling; --trim-cylinder: into a cylinder without a skin, likewise; --mesh: each design as a mesh, run_mesh_case; both: each design as a trimmed
 mesh, run_trim_mesh_case; --properties: only the exact properties, run_properties_case, the census of those
 refused);
 test_crowded_hubs.py runs the short sweep, test_mesh.py the short mesh sweep.
@@ -190,6 +190,53 @@ def run_trim_case(preset, node_fraction, ratio, step):
     return "built", detail, seconds
 
 
+# The cylinder trim's body (tests/python/data/dense_cylinder.brep): along z through the middle of the 3 x 3 x 3
+# cells, its wall across the crowded hubs (there, thin bands of cone between two hubs' tight collars were refused).
+TRIM_CYLINDER = ((1.25, 1.25), 1.05, (-1.0, 3.5))  # axis, radius, z range
+
+
+def sampled_cylinder_volume(lat, n=400_000, seed=7):
+    """Volume of the lattice inside TRIM_CYLINDER by sampling the kernel's point membership, and its standard error."""
+    rng = np.random.default_rng(seed)
+    (cx, cy), radius, (z0, z1) = TRIM_CYLINDER
+    centers, radii = lat.balls()
+    lo = np.maximum((centers - radii[:, None]).min(0), (cx - radius, cy - radius, z0))
+    hi = np.minimum((centers + radii[:, None]).max(0), (cx + radius, cy + radius, z1))
+    points = lo + rng.random((n, 3)) * (hi - lo)
+    inside = np.hypot(points[:, 0] - cx, points[:, 1] - cy) <= radius
+    hits = np.zeros(n, bool)
+    hits[inside] = np.asarray(lat.contains(points[inside]), bool)
+    box = float(np.prod(hi - lo))
+    f = hits.mean()
+    return f * box, box * math.sqrt(f * (1 - f) / n)
+
+
+def run_cylinder_trim_case(preset, node_fraction, ratio, step):
+    """The designs (3 x 3 x 3 cells) trimmed into TRIM_CYLINDER without a skin: 'built' (one valid solid, volume
+    within 5 sigma of sampling), 'foreign', 'too short' or 'failed'."""
+    lat = lattice(preset, node_fraction, ratio, step, (3, 3, 3))
+    with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "dense_cylinder.brep")) as f:
+        body = f.read()
+    start = time.perf_counter()
+    stats = {}
+    try:
+        text = lat.brep(body=body, stats=stats)
+    except (ValueError, RuntimeError) as error:
+        message = str(error)
+        outcome = "foreign" if "is not clean" in message else "too short" if "too short" in message else "failed"
+        return outcome, message[:300], time.perf_counter() - start
+    seconds = time.perf_counter() - start
+    props = sl.brep_properties(text)
+    estimate, sigma = sampled_cylinder_volume(lat)
+    # The wall can cut a beam's chord off its hubs: the part may be several solids.
+    detail = "%d solids, %d clusters (%d retried: %d fuzzy, %d with bands merged), volume %.5f, sampled %.5f +- " \
+             "%.5f" % (props["solids"], stats["band_clusters"], stats["retried_clusters"], stats["fuzzy_clusters"],
+                       stats["merged_clusters"], props["volume"], estimate, sigma)
+    if not props["valid"] or not abs(props["volume"] - estimate) <= 5 * sigma:
+        return "failed", "valid %s, %s" % (props["valid"], detail), seconds
+    return "built", detail, seconds
+
+
 def mesh_refusal(error, start):
     """(outcome, detail, seconds) of a mesh that was refused: 'too short' when the refusal names a beam too short
     for its hubs' collars, else 'failed'."""
@@ -306,5 +353,6 @@ if __name__ == "__main__":
     if "--only" in sys.argv:
         chosen = only(chosen, sys.argv[sys.argv.index("--only") + 1])
     sweep(chosen,
-          run=run_trim_mesh_case if trim and mesh else run_trim_case if trim else run_mesh_case if mesh else
+          run=run_cylinder_trim_case if "--trim-cylinder" in sys.argv else
+          run_trim_mesh_case if trim and mesh else run_trim_case if trim else run_mesh_case if mesh else
           run_properties_case if "--properties" in sys.argv else run_case)

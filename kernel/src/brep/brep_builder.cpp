@@ -596,9 +596,10 @@ void place_core(PieceBuild& b, HubWork& hub, std::size_t h) {
     const BeamFrustum& fr = b.frustums[e];
     const double to_cut = hub.stumps[s].second == 0 ? fr.cut_position() : fr.cone.length - fr.cut_position();
     if (!(ec.axial < to_cut * (1.0 - 1e-9)))
-      fail_input("hub", "ball " + std::to_string(hub.ball) + ": beam " + std::to_string(e) +
-                            " is too short for the collar its crowded hub needs (collar at " +
-                            std::to_string(ec.axial) + ", cut at " + std::to_string(to_cut) + ")");
+      throw CollarPastCut("hub: ball " + std::to_string(hub.ball) + ": beam " + std::to_string(e) +
+                              " is too short for the collar its crowded hub needs (collar at " +
+                              std::to_string(ec.axial) + ", cut at " + std::to_string(to_cut) + ")",
+                          e, hub.stumps[s].second, ec.axial);
   }
 }
 
@@ -1308,7 +1309,8 @@ std::vector<double> stump_starts(const FlatLattice& f, const std::vector<BeamFru
   return starts;
 }
 
-std::vector<char> place_cuts_between_collars(const FlatLattice& f, std::vector<BeamFrustum>& frustums) {
+std::vector<char> place_cuts_between_collars(const FlatLattice& f, std::vector<BeamFrustum>& frustums,
+                                             const KnownCollars& known) {
   std::vector<HubGeometry> hubs(f.ball_count());
   std::vector<std::vector<std::pair<std::int64_t, int>>> stumps(f.ball_count());
   tbb::parallel_for(std::int64_t(0), f.ball_count(), [&](std::int64_t i) {
@@ -1336,6 +1338,8 @@ std::vector<char> place_cuts_between_collars(const FlatLattice& f, std::vector<B
     for (std::size_t s = 0; s < stumps[i].size(); ++s)
       start[2 * stumps[i][s].first + stumps[i][s].second] = c[s] * hubs[i].ball.radius;
   }
+  for (const auto& [end, collar] : known)
+    if (!(start[end] >= collar)) start[end] = collar;
   for (std::int64_t e = 0; e < f.beam_count(); ++e) {
     BeamFrustum& fr = frustums[e];
     if (!fr.exists || (std::isnan(start[2 * e]) && std::isnan(start[2 * e + 1]))) continue;

@@ -8,6 +8,9 @@
 #include <TopoDS_Vertex.hxx>
 
 #include <cstdint>
+#include <map>
+#include <stdexcept>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
@@ -75,10 +78,26 @@ BrepPieces build_brep_pieces(const FlatLattice& lattice, const BrepSelection& se
 std::vector<double> stump_starts(const FlatLattice& lattice, const std::vector<BeamFrustum>& frustums,
                                  const std::vector<char>& beams, std::int64_t ball);
 
+// A crowded hub's collar that came out beyond its beam's cut: the core's Fuse needed collars farther out than the
+// ones the cut was placed for (build_hub_core's fallbacks, e.g. tangent exit caps with a taper). Says where, so
+// that the trim can place its cuts again knowing that collar.
+struct CollarPastCut : std::runtime_error {
+  CollarPastCut(const std::string& what, std::int64_t beam_index, int beam_end, double at)
+      : std::runtime_error(what), beam(beam_index), end(beam_end), collar(at) {}
+  std::int64_t beam;
+  int end;        // 0 at the beam's ball a, 1 at ball b
+  double collar;  // the collar's distance from its ball's centre
+};
+
+// Collars known from a build (CollarPastCut), per beam end (2 * beam + end): where the stump starts at least.
+using KnownCollars = std::map<std::int64_t, double>;
+
 // Moves the cut of every beam whose halfway cut lies within a crowded hub's collar (thick beams between crowded
 // hubs) to halfway between its two hubs' stump starts, with the whole lattice's hubs (each distinct shape's
-// collars computed once). Beams too short for both collars keep their cut: returned, per beam, as 1 (no room for
-// a cut between the two collars; the build gives their hubs tight collars, or builds them as one).
-std::vector<char> place_cuts_between_collars(const FlatLattice& lattice, std::vector<BeamFrustum>& frustums);
+// collars computed once; `known` ones farther out where a build found them so). Beams too short for both collars
+// keep their cut: returned, per beam, as 1 (no room for a cut between the two collars; the build gives their hubs
+// tight collars, or builds them as one).
+std::vector<char> place_cuts_between_collars(const FlatLattice& lattice, std::vector<BeamFrustum>& frustums,
+                                             const KnownCollars& known = {});
 
 }  // namespace steady

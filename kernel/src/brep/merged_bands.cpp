@@ -143,7 +143,8 @@ std::optional<TopoDS_Face> merged_face(const TopoDS_Face& stump, const TopoDS_Fa
   const Handle(Geom_Surface) surface = BRep_Tool::Surface(stump, location);
   TopoDS_Face out;
   b.MakeFace(out, surface, location, BRep_Tool::Tolerance(stump));
-  // The band's edges on the stump's surface.
+  // The band's edges on the stump's surface. This adds a representation to edges the unmerged cluster shares
+  // (only the band's, on the stump's surface, exact): harmless to it, whose faces never ask for them.
   TopTools_IndexedMapOfShape band_edges;
   TopExp::MapShapes(band, TopAbs_EDGE, band_edges);
   for (int i = 1; i <= band_edges.Extent(); ++i) {

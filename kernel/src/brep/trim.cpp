@@ -128,7 +128,7 @@ std::vector<TopoDS_Face> band_part(const ClipContext& c, BuiltHubs& built, SeamP
 
 // One attempt at trimming, with the boundary hubs' spheres laid out by `seams`: the phases of trim_phases.hpp.
 TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, const TrimOptions& options,
-                        SeamPreference seams, Progress& progress) {
+                        SeamPreference seams, const KnownCollars& known, Progress& progress) {
   TrimResult out;
   TrimStats& stats = out.stats;
   TrimBudget budget(progress);
@@ -136,7 +136,8 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
   const Bodies bodies = make_bodies(body_shape, options, budget);
   if (bodies.skin) out.skin = bodies.skin->skin;
   std::vector<BeamFrustum> frustums = beam_frustums(f);  // place_cuts moves some cuts
-  const std::vector<char> no_room = place_cuts_between_collars(f, frustums);  // before the hubs' reach is classified
+  // Before the hubs' reach is classified.
+  const std::vector<char> no_room = place_cuts_between_collars(f, frustums, known);
   const std::vector<char> absorbed = absorbed_balls(f, frustums);
   const HubStates states = classify(f, frustums, absorbed, bodies, stats, budget);
   stats.classify_seconds = seconds_since(clock);
@@ -148,7 +149,7 @@ TrimResult trim_attempt(const FlatLattice& f, const TopoDS_Shape& body_shape, co
   CutPlan plan;
   {
     Progress part(progress, budget.rest(weights.split), std::max<std::int64_t>(1, weights.band_band_beams));
-    plan = place_cuts(f, roles, bodies, options, frustums, stats, part);
+    plan = place_cuts(f, roles, bodies, options, frustums, stats, part, known);
   }
   BuiltHubs built = build_hubs(f, roles, plan, seams, weights, budget, options, stats);
   clock = std::chrono::steady_clock::now();
@@ -236,27 +237,41 @@ TrimResult trim_lattice(const FlatLattice& f, const TopoDS_Shape& body_shape, co
   if (options.move_cuts) attempts.push_back({SeamPreference::FewestCrossings, false});
   attempts.push_back({SeamPreference::MostCrossings, false});
   std::string failures;
+  // Collars a build found beyond the cuts placed for them (CollarPastCut): the same attempt runs again with its
+  // cuts placed beyond them, up to kCollarRounds times (the FCC at beam/node 0.5 with a taper in a cylinder: a
+  // core fused with collars 1.12 times as far out as planned).
+  constexpr int kCollarRounds = 4;
+  KnownCollars known;
   for (std::size_t k = 0; k < attempts.size(); ++k) {
     TrimOptions o = options;
     o.move_cuts = attempts[k].move_cuts;
-    try {
-      if (k == 0) return trim_attempt(f, body_shape, o, attempts[k].seams, progress);
-      TrimResult retried = trim_attempt(f, body_shape, o, attempts[k].seams, no_progress());
-      retried.stats.relaid_out = true;
-      retried.stats.relaid_reason = failures;
-      progress.finish();
-      return retried;
-    } catch (const Cancelled&) {
-      throw;
-    } catch (const ResourceLimit&) {
-      throw;  // too large for memory: no other attempt fits either
-    } catch (const std::runtime_error& e) {
-      progress.check();
-      trim::report(options, "trim: attempt " + std::to_string(k + 1) + " of " + std::to_string(attempts.size()) +
-                                " failed: " + e.what());
-      // A failure said once: the attempts often fail alike (the same cluster, the same checks).
-      if (failures.find(e.what()) == std::string::npos)
-        failures += (failures.empty() ? "" : "; then ") + std::string(e.what());
+    for (int round = 0;; ++round) {
+      try {
+        if (k == 0 && round == 0) return trim_attempt(f, body_shape, o, attempts[k].seams, known, progress);
+        TrimResult retried = trim_attempt(f, body_shape, o, attempts[k].seams, known, no_progress());
+        retried.stats.relaid_out = k > 0;
+        retried.stats.relaid_reason = failures;
+        progress.finish();
+        return retried;
+      } catch (const Cancelled&) {
+        throw;
+      } catch (const ResourceLimit&) {
+        throw;  // too large for memory: no other attempt fits either
+      } catch (const std::runtime_error& e) {
+        progress.check();
+        const CollarPastCut* past = dynamic_cast<const CollarPastCut*>(&e);
+        if (past && round < kCollarRounds && !(known[2 * past->beam + past->end] >= past->collar)) {
+          known[2 * past->beam + past->end] = past->collar;
+          trim::report(options, "trim: cuts placed again beyond a collar the build found: " + std::string(e.what()));
+          continue;
+        }
+        trim::report(options, "trim: attempt " + std::to_string(k + 1) + " of " + std::to_string(attempts.size()) +
+                                  " failed: " + e.what());
+        // A failure said once: the attempts often fail alike (the same cluster, the same checks).
+        if (failures.find(e.what()) == std::string::npos)
+          failures += (failures.empty() ? "" : "; then ") + std::string(e.what());
+        break;
+      }
     }
   }
   throw std::runtime_error(failures + " (" + std::to_string(attempts.size()) + " attempts: as asked" +

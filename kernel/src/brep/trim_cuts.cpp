@@ -22,8 +22,9 @@ constexpr double kMovedCutPlaces[] = {0.35, 0.65, 0.2, 0.8, 0.1, 0.9};
 class CutPlacer {
  public:
   CutPlacer(const FlatLattice& f, const HubRoles& roles, const SolidBody* boundary, double clearance,
-            std::vector<BeamFrustum>& frustums, TrimStats& stats)
-      : f_(f), roles_(roles), boundary_(boundary), clearance_(clearance), frustums_(frustums), stats_(stats) {}
+            std::vector<BeamFrustum>& frustums, TrimStats& stats, const KnownCollars& known)
+      : f_(f), roles_(roles), boundary_(boundary), clearance_(clearance), frustums_(frustums), stats_(stats),
+        known_(known) {}
 
   // A cut is clear when its disk keeps off the boundary the Booleans use.
   bool clear(const Circle& cut) {
@@ -49,7 +50,9 @@ class CutPlacer {
   double stump_start(std::int64_t ball, std::int64_t e) {
     auto found = starts_.find(ball);
     if (found == starts_.end()) found = starts_.emplace(ball, stump_starts(f_, frustums_, roles_.band_beams, ball)).first;
-    return found->second[f_.incident_slot(ball, e)];
+    const double planned = found->second[f_.incident_slot(ball, e)];
+    const auto built = known_.find(2 * e + (f_.beams[e].a == ball ? 0 : 1));
+    return built != known_.end() && !(planned >= built->second) ? built->second : planned;
   }
 
   const FlatLattice& f_;
@@ -58,13 +61,15 @@ class CutPlacer {
   double clearance_;
   std::vector<BeamFrustum>& frustums_;
   TrimStats& stats_;
+  const KnownCollars& known_;
   std::unordered_map<std::int64_t, std::vector<double>> starts_;
 };
 
 }  // namespace
 
 CutPlan place_cuts(const FlatLattice& f, const HubRoles& roles, const Bodies& bodies, const TrimOptions& options,
-                   std::vector<BeamFrustum>& frustums, TrimStats& stats, Progress& progress) {
+                   std::vector<BeamFrustum>& frustums, TrimStats& stats, Progress& progress,
+                   const KnownCollars& known) {
   CutPlan plan;
   // Clip: the clusters meet the body, or with a skin its inner offset. Whole with a skin: the band is fused with
   // the skin in one Boolean and is not split.
@@ -72,7 +77,7 @@ CutPlan place_cuts(const FlatLattice& f, const HubRoles& roles, const Bodies& bo
   plan.split.assign(f.beam_count(), 0);
   plan.moved.assign(f.beam_count(), 0);
   DisjointSets roots(static_cast<std::size_t>(f.ball_count()));
-  CutPlacer placer(f, roles, plan.boundary, kClearanceRelative * bodies.body.size(), frustums, stats);
+  CutPlacer placer(f, roles, plan.boundary, kClearanceRelative * bodies.body.size(), frustums, stats, known);
   // Where each cut was before this step (halfway, or between crowded hubs' collars), to go back to.
   std::vector<double> first_place(f.beam_count());
   for (std::int64_t e = 0; e < f.beam_count(); ++e) first_place[e] = frustums[e].cut_fraction;

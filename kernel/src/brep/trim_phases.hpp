@@ -127,9 +127,10 @@ struct CutPlan {
   std::vector<std::int64_t> cluster_root;  // per ball: the representative of its cluster
   std::vector<double> cut_fractions;    // per beam: where its cut lies (BeamFrustum::cut_fraction)
 };
-// Moves cuts in `frustums` where halfway is not clear of the boundary.
+// Moves cuts in `frustums` where halfway is not clear of the boundary (never within a `known` collar).
 CutPlan place_cuts(const FlatLattice& f, const HubRoles& roles, const Bodies& bodies, const TrimOptions& options,
-                   std::vector<BeamFrustum>& frustums, TrimStats& stats, Progress& progress);
+                   std::vector<BeamFrustum>& frustums, TrimStats& stats, Progress& progress,
+                   const KnownCollars& known = {});
 
 struct Clusters {
   std::vector<std::vector<TopoDS_Face>> faces;  // per cluster

@@ -21,6 +21,9 @@ bodies = {
     # Dense 3 x 3 x 3 lattices of unit cells (centres 0 to 2.5) trimmed with beams too short for a cut
     # (test_crowded_hubs.py): a box across the middle.
     "dense_box.brep": Part.makeBox(1.75, 1.75, 1.75, FreeCAD.Vector(0.325, 0.325, 0.325)),
+    # The same lattices in a cylinder along z through their middle, whose wall crosses thin bands of cone between
+    # crowded hubs' collars (crowded_sweep.py --trim-cylinder; docs/brep.md, section 3).
+    "dense_cylinder.brep": Part.makeCylinder(1.05, 4.5, FreeCAD.Vector(1.25, 1.25, -1.0)),
 }
 for name, shape in bodies.items():
     with open(os.path.join(here, name), "w") as f:
