@@ -187,9 +187,10 @@ TEST(Trim, CutsPlacedAnywhereBeyondTheStumpsStarts) {
       solid_with_cut_at(x);
       ADD_FAILURE() << "a cut inside a collar was built";
     } catch (const CollarPastCut& past) {
-      EXPECT_EQ(past.beam, e);
-      EXPECT_EQ(past.end, end);
-      EXPECT_NEAR(past.collar, end == 0 ? from : frustums[e].cone.length - to, 1e-12);
+      ASSERT_EQ(past.ends.size(), 1u);
+      EXPECT_EQ(past.ends[0].beam, e);
+      EXPECT_EQ(past.ends[0].end, end);
+      EXPECT_NEAR(past.ends[0].collar, end == 0 ? from : frustums[e].cone.length - to, 1e-12);
     }
   }
   // Arguments that do not fit the lattice are named, not read past.

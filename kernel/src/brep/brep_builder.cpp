@@ -27,6 +27,8 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <mutex>
+#include <tuple>
 #include <chrono>
 #include <map>
 #include <cmath>
@@ -470,7 +472,22 @@ struct PieceBuild {
   // for the groups and those they took.
   Progress* tail = nullptr;
   std::int64_t group_units_reserved = 0, group_units_given = 0;
+  // Collars placed beyond their beams' cuts (place_core), all of them, thrown together (throw_collars_past_cuts).
+  std::vector<CollarPastCut::End> collars_past_cuts{};
+  std::string collar_past_cut_message{};
+  std::mutex collars_past_cuts_mutex{};
 };
+
+void throw_collars_past_cuts(const PieceBuild& b) {
+  if (b.collars_past_cuts.empty()) return;
+  std::vector<CollarPastCut::End> ends = b.collars_past_cuts;
+  std::sort(ends.begin(), ends.end(), [](const auto& x, const auto& y) {
+    return std::tie(x.beam, x.end) < std::tie(y.beam, y.end);
+  });
+  const std::string more =
+      ends.size() > 1 ? " and " + std::to_string(ends.size() - 1) + " more beam ends like it" : std::string();
+  throw CollarPastCut(b.collar_past_cut_message + more, std::move(ends));
+}
 
 void check_selection(const FlatLattice& f, const BrepSelection& selection) {
   if (static_cast<std::int64_t>(selection.balls.size()) != f.ball_count() ||
@@ -595,11 +612,14 @@ void place_core(PieceBuild& b, HubWork& hub, std::size_t h) {
     if (b.beams[e].kind == BeamKind::Whole) continue;
     const BeamFrustum& fr = b.frustums[e];
     const double to_cut = hub.stumps[s].second == 0 ? fr.cut_position() : fr.cone.length - fr.cut_position();
-    if (!(ec.axial < to_cut * (1.0 - 1e-9)))
-      throw CollarPastCut("hub: ball " + std::to_string(hub.ball) + ": beam " + std::to_string(e) +
-                              " is too short for the collar its crowded hub needs (collar at " +
-                              std::to_string(ec.axial) + ", cut at " + std::to_string(to_cut) + ")",
-                          e, hub.stumps[s].second, ec.axial);
+    if (!(ec.axial < to_cut * (1.0 - 1e-9))) {
+      const std::lock_guard<std::mutex> lock(b.collars_past_cuts_mutex);
+      if (b.collars_past_cuts.empty())
+        b.collar_past_cut_message = "hub: ball " + std::to_string(hub.ball) + ": beam " + std::to_string(e) +
+                                    " is too short for the collar its crowded hub needs (collar at " +
+                                    std::to_string(ec.axial) + ", cut at " + std::to_string(to_cut) + ")";
+      b.collars_past_cuts.push_back({e, hub.stumps[s].second, ec.axial});
+    }
   }
 }
 
@@ -684,6 +704,7 @@ void tighten_short_beams(PieceBuild& b) {
     b.hubs[h].faces.clear();
     place_core(b, b.hubs[h], h);
   });
+  throw_collars_past_cuts(b);
 }
 
 // A fused group's faces go to its first hub, its other hubs keep none, and the beams leaving it start at the
@@ -1247,6 +1268,7 @@ BrepPieces build_brep_pieces(const FlatLattice& f, const BrepSelection& selectio
     progress.check();
     place_core(b, b.hubs[h], h);
   });
+  throw_collars_past_cuts(b);
   // Tight collars first: the beams they make fit need not join a foreign contact's group.
   if (selection.crowded_fallbacks) tighten_short_beams(b);
   // The rest of the bar, the faces' share, is shared with the groups' Fuses now that the hubs that may join one

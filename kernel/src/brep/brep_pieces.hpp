@@ -82,11 +82,13 @@ std::vector<double> stump_starts(const FlatLattice& lattice, const std::vector<B
 // ones the cut was placed for (build_hub_core's fallbacks, e.g. tangent exit caps with a taper). Says where, so
 // that the trim can place its cuts again knowing that collar.
 struct CollarPastCut : std::runtime_error {
-  CollarPastCut(const std::string& what, std::int64_t beam_index, int beam_end, double at)
-      : std::runtime_error(what), beam(beam_index), end(beam_end), collar(at) {}
-  std::int64_t beam;
-  int end;        // 0 at the beam's ball a, 1 at ball b
-  double collar;  // the collar's distance from its ball's centre
+  struct End {
+    std::int64_t beam;
+    int end;        // 0 at the beam's ball a, 1 at ball b
+    double collar;  // the collar's distance from its ball's centre
+  };
+  CollarPastCut(const std::string& what, std::vector<End> found) : std::runtime_error(what), ends(std::move(found)) {}
+  std::vector<End> ends;  // every one the build found
 };
 
 // Collars known from a build (CollarPastCut), per beam end (2 * beam + end): where the stump starts at least.

@@ -259,10 +259,15 @@ TrimResult trim_lattice(const FlatLattice& f, const TopoDS_Shape& body_shape, co
         throw;  // too large for memory: no other attempt fits either
       } catch (const std::runtime_error& e) {
         progress.check();
-        const CollarPastCut* past = dynamic_cast<const CollarPastCut*>(&e);
-        if (past && round < kCollarRounds && !(known[2 * past->beam + past->end] >= past->collar)) {
-          known[2 * past->beam + past->end] = past->collar;
-          trim::report(options, "trim: cuts placed again beyond a collar the build found: " + std::string(e.what()));
+        bool learnt = false;
+        if (const CollarPastCut* past = dynamic_cast<const CollarPastCut*>(&e))
+          for (const CollarPastCut::End& end : past->ends) {
+            double& collar = known[2 * end.beam + end.end];
+            learnt = learnt || !(collar >= end.collar);
+            collar = std::max(collar, end.collar);
+          }
+        if (learnt && round < kCollarRounds) {
+          trim::report(options, "trim: cuts placed again beyond the collars the build found: " + std::string(e.what()));
           continue;
         }
         trim::report(options, "trim: attempt " + std::to_string(k + 1) + " of " + std::to_string(attempts.size()) +
