@@ -2,6 +2,9 @@
 // Brute-force point membership in a flat lattice (every ball, every beam as the hull of its end balls): the
 // reference the trimming tests' Monte Carlo estimates count with, independent of the B-rep.
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <random>
 
 #include "steady/lattice/flat_lattice.hpp"
 
@@ -28,6 +31,25 @@ inline bool in_lattice(const FlatLattice& f, const Vec3& p) {
     if (g(0.5 * (lo + hi)) <= 0) return true;
   }
   return false;
+}
+
+struct SampledVolume {
+  double volume, sigma;  // the estimate and its standard error
+};
+
+// Volume of the lattice inside the cylinder of `radius` about the vertical line through (cx, cy), between heights
+// z0 and z1, by sampling in_lattice over the cylinder's box.
+inline SampledVolume volume_in_upright_cylinder(const FlatLattice& f, double cx, double cy, double radius, double z0,
+                                               double z1, int samples, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> ux(cx - radius, cx + radius), uy(cy - radius, cy + radius), uz(z0, z1);
+  int hits = 0;
+  for (int k = 0; k < samples; ++k) {
+    const Vec3 p(ux(rng), uy(rng), uz(rng));
+    hits += std::hypot(p.x - cx, p.y - cy) <= radius && in_lattice(f, p);
+  }
+  const double box = 4.0 * radius * radius * (z1 - z0), frac = double(hits) / samples;
+  return {frac * box, std::sqrt(frac * (1 - frac) / samples) * box};
 }
 
 }  // namespace steady::test

@@ -10,7 +10,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -73,20 +72,12 @@ TEST(CollarPastCut, TheTaperedFccWithTangentCapsTrimsIntoACylinder) {
   bool placed_again = false;
   for (const std::string& m : log) placed_again = placed_again || m.find("cuts placed again") != std::string::npos;
   EXPECT_TRUE(placed_again) << "the first build's collars fit: the case no longer shows the Fuse's farther collars";
-  std::mt19937_64 rng(3);
-  const Vec3 lo(base.x - radius, base.y - radius, -0.5), hi(base.x + radius, base.y + radius, 3.5);
-  std::uniform_real_distribution<double> ux(lo.x, hi.x), uy(lo.y, hi.y), uz(lo.z, hi.z);
-  const int samples = 200000;
-  int hits = 0;
-  for (int k = 0; k < samples; ++k) {
-    const Vec3 p(ux(rng), uy(rng), uz(rng));
-    hits += std::hypot(p.x - base.x, p.y - base.y) <= radius && test::in_lattice(f, p);
-  }
-  const double box = (hi.x - lo.x) * (hi.y - lo.y) * (hi.z - lo.z), frac = double(hits) / samples;
-  const double sigma = std::sqrt(frac * (1 - frac) / samples) * box;
-  EXPECT_NEAR(shape_volume(r.part), frac * box, 4 * sigma);
+  // The lattice lies within heights -0.5 and 3.5.
+  const test::SampledVolume sampled =
+      test::volume_in_upright_cylinder(f, base.x, base.y, radius, -0.5, 3.5, 200000, 3);
+  EXPECT_NEAR(shape_volume(r.part), sampled.volume, 4 * sampled.sigma);
   std::printf("[ report ] tapered FCC at beam/node 0.5 in the cylinder: volume %.5f, Monte Carlo %.5f +- %.5f\n",
-              shape_volume(r.part), frac * box, sigma);
+              shape_volume(r.part), sampled.volume, sampled.sigma);
 }
 
 }  // namespace

@@ -7,9 +7,10 @@ whose properties cannot be computed (then checked against sampling its membershi
 different hubs meet (the clean check's business, not a hub's), is refused because a beam is too short for the
 collars of its two crowded hubs (the message must name the beam), or fails.
 
-`python3 crowded_sweep.py [--long] [--only SPEC] [--trim | --trim-cylinder | --mesh | --trim --mesh | --properties]`
-prints every case and the counts (--only: a part of the sweep, see `only`; --trim: each design trimmed into a box
-with a skin instead, checked against sampling; --trim-cylinder: into a cylinder without a skin, likewise; --mesh: each design as a mesh, run_mesh_case; both: each design as a trimmed
+`python3 crowded_sweep.py [--long] [--only SPEC] [--trim | --trim-cylinder | --mesh | --trim --mesh |
+--properties]` prints every case and the counts (--only: a part of the sweep, see `only`; --trim: each design
+trimmed into a box with a skin instead, checked against sampling; --trim-cylinder: into a cylinder without a skin,
+likewise; --mesh: each design as a mesh, run_mesh_case; both: each design as a trimmed
 mesh, run_trim_mesh_case; --properties: only the exact properties, run_properties_case, the census of those
 refused);
 test_crowded_hubs.py runs the short sweep, test_mesh.py the short mesh sweep.
@@ -164,20 +165,27 @@ def sampled_trimmed_volume(lat, skin, n=400_000, seed=7):
     return f * edge ** 3, edge ** 3 * math.sqrt(f * (1 - f) / n)
 
 
+def trimmed_brep(lat, body, skin, stats):
+    """(text, refusal, seconds): the lattice trimmed into `body` as BREP text and no refusal, or the refusal's
+    message and its outcome ('foreign', 'too short' or 'failed')."""
+    start = time.perf_counter()
+    try:
+        text = lat.brep(body=body, skin=skin, stats=stats)
+    except (ValueError, RuntimeError) as error:
+        message = str(error)
+        outcome = "foreign" if "is not clean" in message else "too short" if "too short" in message else "failed"
+        return message[:300], outcome, time.perf_counter() - start
+    return text, None, time.perf_counter() - start
+
+
 def run_trim_case(preset, node_fraction, ratio, step):
     """The same designs (3 x 3 x 3 cells) trimmed into TRIM_BOX with a skin of TRIM_SKIN: 'built' (one valid solid,
     volume within 5 sigma of sampling), 'foreign', 'too short' or 'failed'."""
     lat = lattice(preset, node_fraction, ratio, step, (3, 3, 3))
-    box = trim_box_brep()
-    start = time.perf_counter()
     stats = {}
-    try:
-        text = lat.brep(body=box, skin=TRIM_SKIN, stats=stats)
-    except (ValueError, RuntimeError) as error:
-        message = str(error)
-        outcome = "foreign" if "is not clean" in message else "too short" if "too short" in message else "failed"
-        return outcome, message[:300], time.perf_counter() - start
-    seconds = time.perf_counter() - start
+    text, refusal, seconds = trimmed_brep(lat, trim_box_brep(), TRIM_SKIN, stats)
+    if refusal:
+        return refusal, text, seconds
     props = sl.brep_properties(text)
     estimate, sigma = sampled_trimmed_volume(lat, TRIM_SKIN)
     detail = "%d cores (%d tight), %d hubs in %d groups, %d meeting others in %d groups, %d joined to the band, " \
@@ -217,15 +225,10 @@ def run_cylinder_trim_case(preset, node_fraction, ratio, step):
     lat = lattice(preset, node_fraction, ratio, step, (3, 3, 3))
     with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "dense_cylinder.brep")) as f:
         body = f.read()
-    start = time.perf_counter()
     stats = {}
-    try:
-        text = lat.brep(body=body, stats=stats)
-    except (ValueError, RuntimeError) as error:
-        message = str(error)
-        outcome = "foreign" if "is not clean" in message else "too short" if "too short" in message else "failed"
-        return outcome, message[:300], time.perf_counter() - start
-    seconds = time.perf_counter() - start
+    text, refusal, seconds = trimmed_brep(lat, body, 0.0, stats)
+    if refusal:
+        return refusal, text, seconds
     props = sl.brep_properties(text)
     estimate, sigma = sampled_cylinder_volume(lat)
     # The wall can cut a beam's chord off its hubs: the part may be several solids.
