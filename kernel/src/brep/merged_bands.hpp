@@ -10,8 +10,9 @@
 // into the face across one of its full circles (a collar) when that face lies on the same cone and is no band:
 // the band's edges get pcurves on the stump's surface (its own carried over by the isometry of the two
 // parametrizations, found from the collar's two pcurves and checked on the band's edges), and the stump's wire
-// takes the band's edges in place of the collar. OpenCASCADE's `ShapeUpgrade_UnifySameDomain` throws on these
-// faces (their seams lie at different vertex directions), hence this narrow merge of our own.
+// takes the band's edges in place of the collar. OpenCASCADE 7.6's `ShapeUpgrade_UnifySameDomain` throws on these
+// faces ("TopoDS_Vertex hasn't gp_Pnt", on a whole cluster and on one beam's faces alike), hence this narrow merge
+// of our own.
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Shape.hxx>
 
