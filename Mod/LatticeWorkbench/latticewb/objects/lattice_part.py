@@ -100,8 +100,9 @@ def report_trim(label, stats):
     retried = stats["retried_clusters"] - stats["fuzzy_clusters"]
     if retried > 0:
         FreeCAD.Console.PrintMessage(
-            "%s: %d boundary cluster(s) clipped exactly on a second try (other layout or turned frame)\n"
-            % (label, retried))
+            "%s: %d boundary cluster(s) clipped exactly on a second try (other layout, turned frame, or %d with the "
+            "thin bands of cone between crowded hubs' collars merged into their stumps)\n"
+            % (label, retried, stats.get("merged_clusters", 0)))
     if stats["relaid_out"]:
         FreeCAD.Console.PrintMessage("%s: trimmed on a later attempt, the first having failed (%s)\n"
                                      % (label, stats["relaid_reason"]))
