@@ -472,21 +472,24 @@ struct PieceBuild {
   // for the groups and those they took.
   Progress* tail = nullptr;
   std::int64_t group_units_reserved = 0, group_units_given = 0;
-  // Collars placed beyond their beams' cuts (place_core), all of them, thrown together (throw_collars_past_cuts).
-  std::vector<CollarPastCut::End> collars_past_cuts{};
-  std::string collar_past_cut_message{};
+  // Collars placed beyond their beams' cuts (place_core) with what to say of each, all of them thrown together
+  // (throw_collars_past_cuts).
+  std::vector<std::pair<CollarPastCut::End, std::string>> collars_past_cuts{};
   std::mutex collars_past_cuts_mutex{};
 };
 
+// The message names the first beam end in order, whatever order the parallel placement found them in.
 void throw_collars_past_cuts(const PieceBuild& b) {
   if (b.collars_past_cuts.empty()) return;
-  std::vector<CollarPastCut::End> ends = b.collars_past_cuts;
-  std::sort(ends.begin(), ends.end(), [](const auto& x, const auto& y) {
-    return std::tie(x.beam, x.end) < std::tie(y.beam, y.end);
+  std::vector<std::pair<CollarPastCut::End, std::string>> found = b.collars_past_cuts;
+  std::sort(found.begin(), found.end(), [](const auto& x, const auto& y) {
+    return std::tie(x.first.beam, x.first.end) < std::tie(y.first.beam, y.first.end);
   });
+  std::vector<CollarPastCut::End> ends;
+  for (const auto& [end, message] : found) ends.push_back(end);
   const std::string more =
       ends.size() > 1 ? " and " + std::to_string(ends.size() - 1) + " more beam ends like it" : std::string();
-  throw CollarPastCut(b.collar_past_cut_message + more, std::move(ends));
+  throw CollarPastCut(found.front().second + more, std::move(ends));
 }
 
 void check_selection(const FlatLattice& f, const BrepSelection& selection) {
@@ -613,12 +616,11 @@ void place_core(PieceBuild& b, HubWork& hub, std::size_t h) {
     const BeamFrustum& fr = b.frustums[e];
     const double to_cut = hub.stumps[s].second == 0 ? fr.cut_position() : fr.cone.length - fr.cut_position();
     if (!(ec.axial < to_cut * (1.0 - 1e-9))) {
+      std::string message = "hub: ball " + std::to_string(hub.ball) + ": beam " + std::to_string(e) +
+                            " is too short for the collar its crowded hub needs (collar at " +
+                            std::to_string(ec.axial) + ", cut at " + std::to_string(to_cut) + ")";
       const std::lock_guard<std::mutex> lock(b.collars_past_cuts_mutex);
-      if (b.collars_past_cuts.empty())
-        b.collar_past_cut_message = "hub: ball " + std::to_string(hub.ball) + ": beam " + std::to_string(e) +
-                                    " is too short for the collar its crowded hub needs (collar at " +
-                                    std::to_string(ec.axial) + ", cut at " + std::to_string(to_cut) + ")";
-      b.collars_past_cuts.push_back({e, hub.stumps[s].second, ec.axial});
+      b.collars_past_cuts.push_back({{e, hub.stumps[s].second, ec.axial}, std::move(message)});
     }
   }
 }
