@@ -20,8 +20,10 @@
 #include <TopoDS.hxx>
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
+#include <TopoDS_Vertex.hxx>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -246,6 +248,46 @@ TEST(StepRoundTrip, TheSamePartWrittenTwiceGivesTheSameBytes) {
   EXPECT_EQ(first, second) << "the STEP header differs between two writes";
   std::remove(a.c_str());
   std::remove(b.c_str());
+}
+
+// Reals are written to 1e-9 of the unit where OpenCASCADE writes 1e-12 (issue 14: compact files): no number of
+// the file has more than nine decimals in fixed notation, and a box placed at awkward coordinates comes back
+// within that: its corners to 1e-9, its volume to 2e-8 relative (each edge, 0.12 long at least, moves by up to
+// 1e-9).
+TEST(StepRoundTrip, RealsAreWrittenToNineDecimals) {
+  const gp_Pnt corner(1.0 / 3.0, -2.0 / 7.0, 123.456789012345);
+  const TopoDS_Shape box = BRepPrimAPI_MakeBox(corner, 0.1234567890123, 2.0 / 3.0, 5.0 / 7.0).Shape();
+  const std::string path = temp_path("nine_decimals.step");
+  write_step_assembly(path, {{"Box", box}});
+  const std::string text = test::file_bytes(path);
+  int fixed = 0, longest = 0;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] != '.' || i == 0 || !std::isdigit(static_cast<unsigned char>(text[i - 1]))) continue;
+    int decimals = 0;
+    while (i + 1 + decimals < text.size() && std::isdigit(static_cast<unsigned char>(text[i + 1 + decimals])))
+      ++decimals;
+    if (i + 1 + decimals < text.size() && text[i + 1 + decimals] == 'E') continue;  // exponent form: 13 digits
+    ++fixed;
+    longest = std::max(longest, decimals);
+  }
+  EXPECT_GT(fixed, 20);
+  EXPECT_LE(longest, 9);
+  const std::vector<StepPart> back = read_step_parts(path);
+  ASSERT_EQ(back.size(), 1u);
+  GProp_GProps written, read;
+  BRepGProp::VolumeProperties(box, written);
+  BRepGProp::VolumeProperties(back[0].shape, read);
+  EXPECT_NEAR(read.Mass(), written.Mass(), 2e-8 * written.Mass());
+  double worst = 0.0;
+  for (TopExp_Explorer v(back[0].shape, TopAbs_VERTEX); v.More(); v.Next()) {
+    double nearest = 1e9;
+    for (TopExp_Explorer w(box, TopAbs_VERTEX); w.More(); w.Next())
+      nearest = std::min(nearest, BRep_Tool::Pnt(TopoDS::Vertex(v.Current())).Distance(
+                                      BRep_Tool::Pnt(TopoDS::Vertex(w.Current()))));
+    worst = std::max(worst, nearest);
+  }
+  EXPECT_LT(worst, 1e-9);
+  std::remove(path.c_str());
 }
 
 TEST(StepRoundTrip, BadPathsAndNamesAreRefusedAndLeaveNoFile) {

@@ -567,6 +567,11 @@ void lay_out_shapes(PieceBuild& b) {
   b.catalog = catalog_hubs(b.geometry);
   b.shapes.resize(b.catalog.shapes.size());
   for (const BeamWork& w : b.beams) b.built_beams += w.kind != BeamKind::None;
+  std::vector<double> largest_radius(b.shapes.size(), 0.0);  // of the balls each shape is placed on
+  for (std::size_t h = 0; h < b.hubs.size(); ++h) {
+    double& r = largest_radius[b.catalog.placements[h].shape];
+    r = std::max(r, b.f.balls[b.hubs[h].ball].radius);
+  }
   b.progress.set_total(kShapeUnits * static_cast<std::int64_t>(b.shapes.size()) +
                        kHubUnits * static_cast<std::int64_t>(b.hubs.size()) + kBeamUnits * b.built_beams + 1);
   tbb::parallel_for(std::size_t(0), b.shapes.size(), [&](std::size_t s) {
@@ -578,7 +583,8 @@ void lay_out_shapes(PieceBuild& b) {
       w.pcurves.resize(w.layout.circles.size());
       for (std::size_t c = 0; c < w.layout.circles.size(); ++c)
         for (const CircleArc& arc : w.layout.circles[c].arcs) {
-          w.pcurves[c].push_back(approximate_arc_pcurve(w.layout, static_cast<int>(c), arc));
+          w.pcurves[c].push_back(approximate_arc_pcurve(w.layout, static_cast<int>(c), arc,
+                                                        sphere_pcurve_tolerance(largest_radius[s])));
           w.max_error = std::max(w.max_error, w.pcurves[c].back().max_error);
         }
       b.progress.advance(kShapeUnits);

@@ -1,4 +1,5 @@
 #include "brep/portable_sphere_faces.hpp"
+#include "brep/sphere_pcurve.hpp"
 
 #include <AdvApprox_ApproxAFunction.hxx>
 #include <AdvApprox_EvaluatorFunction.hxx>
@@ -223,7 +224,7 @@ class CurveOnSphere : public AdvApprox_EvaluatorFunction {
   std::vector<double> us_;
 };
 
-// The edge's (u, v) curve on the sphere of `frame`, to 1e-9 rad, or null.
+// The edge's (u, v) curve on the sphere of `frame`, to sphere_pcurve_tolerance(radius), or null.
 Handle(Geom2d_BSplineCurve) pcurve_on(const TopoDS_Edge& edge, const gp_Ax3& frame, double radius,
                                       double& max_error) {
   Standard_Real t0, t1;
@@ -231,7 +232,7 @@ Handle(Geom2d_BSplineCurve) pcurve_on(const TopoDS_Edge& edge, const gp_Ax3& fra
   if (c.IsNull()) return nullptr;
   CurveOnSphere f(c, t0, t1, frame, radius);
   Handle(TColStd_HArray1OfReal) tolerance = new TColStd_HArray1OfReal(1, 1);
-  tolerance->SetValue(1, 1e-9);
+  tolerance->SetValue(1, sphere_pcurve_tolerance(radius));
   AdvApprox_ApproxAFunction approx(0, 1, 0, Handle(TColStd_HArray1OfReal)(), tolerance,
                                    Handle(TColStd_HArray1OfReal)(), t0, t1, GeomAbs_C2, 14, 400, f);
   if (!approx.HasResult()) return nullptr;

@@ -6,6 +6,7 @@
 #include <TColStd_HArray1OfReal.hxx>
 #include <TColgp_Array1OfPnt2d.hxx>
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace steady {
@@ -33,6 +34,12 @@ class ArcEvaluator : public AdvApprox_EvaluatorFunction {
 };
 
 }  // namespace
+
+double sphere_pcurve_tolerance(double largest_radius) {
+  if (!(largest_radius > 0.0)) return kSpherePcurveTolerance;
+  return std::clamp(kSpherePcurve3dTolerance / largest_radius, kFinestSpherePcurveTolerance,
+                    kCoarsestSpherePcurveTolerance);
+}
 
 ArcPcurve approximate_arc_pcurve(const SphereLayout& layout, int circle, const CircleArc& arc, double tolerance) {
   ArcEvaluator f(layout, circle, arc.branch);

@@ -10,7 +10,9 @@
 #include <XSControl_WorkSession.hxx>
 #include <Interface_Static.hxx>
 #include <Quantity_Color.hxx>
+#include <StepData_Protocol.hxx>
 #include <StepData_StepModel.hxx>
+#include <StepData_StepWriter.hxx>
 #include <STEPCAFControl_Reader.hxx>
 #include <STEPCAFControl_Writer.hxx>
 #include <TDF_ChildIterator.hxx>
@@ -30,7 +32,6 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <mutex>
 #include <sstream>
 
@@ -126,10 +127,33 @@ void check_step_name(const std::string& name, const char* field) {
 
 namespace {
 
-// OpenCASCADE's translation of the parts into one assembly, written to `partial`; false when either fails. The
+// Reals are written to 1e-9 of the model's unit where OpenCASCADE writes 1e-12 (issue 14, item 3: compact files):
+// a third of a part's file is numbers, and every edge holds its curves to 1e-7 at best, so the nine decimals keep
+// them 100 times finer than that. Values from 1e-3 to 1e7 take that fixed form; smaller and larger ones keep
+// OpenCASCADE's 13 significant digits (trailing zeros are dropped either way).
+constexpr const char* kFixedRealFormat = "%.9f";
+constexpr double kFixedRealFrom = 1e-3, kFixedRealTo = 1e7;
+constexpr const char* kOtherRealFormat = "%.12E";
+
+// The STEP text of a translated model, written in memory with the formats above.
+bool step_text_of(const Handle(StepData_StepModel)& model, std::string& text) {
+  const Handle(StepData_Protocol) protocol = Handle(StepData_Protocol)::DownCast(model->Protocol());
+  if (protocol.IsNull()) return false;
+  StepData_StepWriter writer(model);
+  writer.FloatWriter().SetFormat(kOtherRealFormat);  // resets the range and the zero suppression: set after
+  writer.FloatWriter().SetFormatForRange(kFixedRealFormat, kFixedRealFrom, kFixedRealTo);
+  writer.FloatWriter().SetZeroSuppress(Standard_True);
+  writer.SendModel(protocol);
+  std::ostringstream out;
+  if (!writer.Print(out)) return false;
+  text = std::move(out).str();
+  return true;
+}
+
+// OpenCASCADE's translation of the parts into one assembly, as STEP text; false when the translation fails. The
 // document and the writer's model are gone when it returns (a 100,000-beam part's model takes gigabytes).
-bool write_occ_step(const std::string& partial, const std::vector<StepPart>& parts, const std::string& assembly_name,
-                    Progress& progress) {
+bool occ_step_text(std::string& text, const std::vector<StepPart>& parts, const std::string& assembly_name,
+                   Progress& progress) {
   std::lock_guard<std::mutex> lock(xcaf_mutex());
   Handle(TDocStd_Document) doc = new_document();
   const DocumentCloser closer{doc};
@@ -171,16 +195,7 @@ bool write_occ_step(const std::string& partial, const std::vector<StepPart>& par
     if (!transferred) return false;
   }
   make_reproducible(writer.ChangeWriter().Model());
-  return writer.Write(partial.c_str()) == IFSelect_RetDone;
-}
-
-// The whole of the file at `path` in `text`; false when it cannot be read.
-bool read_whole_file(const std::string& path, std::string& text) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in) return false;
-  text.resize(static_cast<std::size_t>(in.tellg()));
-  in.seekg(0);
-  return static_cast<bool>(in.read(text.data(), static_cast<std::streamsize>(text.size())));
+  return step_text_of(writer.ChangeWriter().Model(), text);
 }
 
 }  // namespace
@@ -198,13 +213,11 @@ void write_step_assembly(const std::string& path, const std::vector<StepPart>& p
   // report: the fraction waits at 0.5 while it is written and its equal geometry shared).
   progress.set_total(100);
   // Written beside the target and renamed (PartialFile), so that a failure or a cancel leaves no file under the
-  // name; an unwritable path is refused here, before the translation. OpenCASCADE writes its own file to a scratch
-  // beside it, read back and shared (step_shared_geometry.hpp), and removed.
+  // name; an unwritable path is refused here, before the translation. OpenCASCADE's text is made in memory and its
+  // equal geometry shared (step_shared_geometry.hpp) before anything is written.
   PartialFile file(path);
-  PartialFile occ_file(path + ".occ", false);
   std::string text;
-  if (!write_occ_step(occ_file.temporary_path(), parts, assembly_name, progress) ||
-      !read_whole_file(occ_file.temporary_path(), text))
+  if (!occ_step_text(text, parts, assembly_name, progress))
     fail_input("path", "cannot write a STEP file to '" + path + "'");
   text = share_equal_geometry(std::move(text));
   try {
