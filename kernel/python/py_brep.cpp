@@ -120,6 +120,7 @@ void fill_stats(const steady::TrimStats& s, py::dict& d) {
   d["reseat_seconds"] = s.reseat_seconds;
   d["loose_edges"] = s.loose_edges;
   d["retraced_edges"] = s.retraced_edges;
+  d["refitted_edges"] = s.refitted_edges;
   d["loosest_edge_before"] = s.loosest_edge_before;
   d["loosest_edge_after"] = s.loosest_edge_after;
   d["retrace_seconds"] = s.retrace_seconds;
@@ -234,7 +235,7 @@ void bind_brep(py::module_& m) {
       "stumps first), holed_clusters (glued to the skin with no Boolean), rim_clusters (on the inner boundary's edges and seams: united with the skin by one Cut) and of those rim_clusters_unclipped (found before their Common), relaid_out and union_through_pores "
       "with their reasons, with 'bridge' kept_hubs, lost_neighbour_hubs, bridges, rerouted_bridges (of bridges, those "
       "whose route to the nearest wall point was blocked and took another), blocked_bridges (refused: on every route "
-      "tried they would meet another kept element) and ambiguous_bridges (several nearest points), reseated_sphere_faces (sphere faces a Boolean left with a loop across the seam, which STEP readers find invalid, rebuilt on a frame whose seam clears their loops; kept_straddling_faces and kept_straddling_reason: those left as they were, and why; reseat_seconds), loose_edges (edges a Boolean left with a tolerance above 2e-7, approximations of where two quadrics meet) and retraced_edges (of those, given curves on the exact intersection), loosest_edge_before and loosest_edge_after (their largest tolerance), retrace_seconds, faces, volume (by Green's theorem on each face, to about 1e-12: FreeCAD's Shape.Volume can be 1e-3 off on crowded spheres), boolean_seconds, union_seconds. log: None or a callable log(message) receiving "
+      "tried they would meet another kept element) and ambiguous_bridges (several nearest points), reseated_sphere_faces (sphere faces a Boolean left with a loop across the seam, which STEP readers find invalid, rebuilt on a frame whose seam clears their loops; kept_straddling_faces and kept_straddling_reason: those left as they were, and why; reseat_seconds), loose_edges (edges a Boolean left with a tolerance above 2e-7, approximations of where two quadrics meet) and retraced_edges (of those, given curves on the exact intersection), refitted_edges (intersection edges, loose or not, given curves with the angle around a beam or ball as parameter: exact to 1e-8 with far fewer poles), loosest_edge_before and loosest_edge_after (their largest tolerance), retrace_seconds, faces, volume (by Green's theorem on each face, to about 1e-12: FreeCAD's Shape.Volume can be 1e-3 off on crowded spheres), boolean_seconds, union_seconds. log: None or a callable log(message) receiving "
       "the trim's diagnostics as they happen (build times, failed attempts, a union through the pores). dump_dir: "
       "a folder where a boundary cluster that fails every attempt is written as BREP, for study.");
   lattice.def(

@@ -41,6 +41,7 @@ void retrace_loose_edges_of(TrimResult& r) {
   const RetracedEdges e = retrace_loose_edges({r.part, r.lattice, r.skin});
   r.stats.loose_edges = e.loose;
   r.stats.retraced_edges = e.retraced;
+  r.stats.refitted_edges = e.around_axis;
   r.stats.loosest_edge_before = e.loosest_before;
   r.stats.loosest_edge_after = e.loosest_after;
   r.stats.retrace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock).count();
