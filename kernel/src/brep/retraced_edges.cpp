@@ -710,31 +710,39 @@ int trace_poles(const Trace& trace) {
   return n;
 }
 
-// The largest distance at which an angle error on the face's surface moves its point (1 for a plane): its 2D
-// tolerance is the 3D one over this.
-double uv_scale(const Side& side, const gp_Pnt& p) {
+// How far a unit step of u and of v moves the face's point at most, near `p` (a plane's: 1 and 1; a cone's u: twice
+// the distance from its axis there, for the way along the edge): (u, v) curves are approximated as (su u, sv v), in
+// which the 3D tolerance holds for both (on the skin's wall, radius 18.8, v needs no more than a beam's v).
+gp_XY uv_scales(const Side& side, const gp_Pnt& p) {
   switch (side.surface.type) {
-    case GeomAbs_Sphere: return std::max(1.0, side.surface.sphere.Radius());
-    case GeomAbs_Cylinder: return std::max(1.0, side.surface.cylinder.Radius());
-    case GeomAbs_Cone: return std::max(1.0, 2.0 * gp_Lin(side.surface.cone.Axis()).Distance(p));
-    default: return 1.0;
+    case GeomAbs_Sphere: return gp_XY(side.surface.sphere.Radius(), side.surface.sphere.Radius());
+    case GeomAbs_Cylinder: return gp_XY(side.surface.cylinder.Radius(), 1.0);
+    case GeomAbs_Cone: return gp_XY(2.0 * gp_Lin(side.surface.cone.Axis()).Distance(p), 1.0);
+    default: return gp_XY(1.0, 1.0);
   }
 }
 
-// One coordinate space of the exact curve: the (u, v) curve on face `space`, or the 3D curve (space = faces).
+// One coordinate space of the exact curve: the (u, v) curve on face `space` scaled by `scales`, or the 3D curve
+// (space = faces).
 class OneSpace : public AdvApprox_EvaluatorFunction {
  public:
-  OneSpace(AxisCurve& exact, int faces, int space) : exact_(exact), faces_(faces), space_(space), all_(2 * faces + 3) {}
+  OneSpace(AxisCurve& exact, int faces, int space, const gp_XY& scales)
+      : exact_(exact), faces_(faces), space_(space), scales_(scales), all_(2 * faces + 3) {}
   void Evaluate(Standard_Integer* dimension, Standard_Real range[2], Standard_Real* parameter,
                 Standard_Integer* derivative, Standard_Real* result, Standard_Integer* error) override {
     exact_.Evaluate(dimension, range, parameter, derivative, all_.data(), error);
-    const int offset = 2 * space_, size = space_ < faces_ ? 2 : 3;
-    std::copy(all_.begin() + offset, all_.begin() + offset + size, result);
+    if (space_ == faces_) {
+      std::copy_n(all_.begin() + 2 * space_, 3, result);
+      return;
+    }
+    result[0] = all_[2 * space_] * scales_.X();
+    result[1] = all_[2 * space_ + 1] * scales_.Y();
   }
 
  private:
   AxisCurve& exact_;
   int faces_, space_;
+  gp_XY scales_;
   std::vector<double> all_;
 };
 
@@ -746,18 +754,19 @@ Handle(TColStd_HArray1OfReal) one_value(double v) {
 }
 
 // The 3D curve and every (u, v) curve approximated each on its own knots (they share the parameter, so the edge
-// stays same-parameter), the 3D one to half the target deviation and the (u, v) ones to that over how far an angle
-// moves their point; how far they stray measured as for a trace, and from the exact point. (Least-squares splines
+// stays same-parameter), all to half the target deviation (the (u, v) ones scaled by uv_scales); how far they stray measured as for a trace, and from the exact point. (Least-squares splines
 // of the greatest smoothness through samples of the exact curve were tried: the main job 0.1 % smaller, 11 s slower.)
 std::optional<Trace> approximate_axis_curve(AxisCurve& exact, const Sides& sides, const gp_Pnt& middle, double first,
                                             double last) {
   const int n = static_cast<int>(sides.faces.size());
   const Handle(TColStd_HArray1OfReal) none;
   Trace trace;
+  const double tolerance = 0.5 * kTargetDeviation;
   for (int space = 0; space <= n; ++space) {
-    OneSpace f(exact, n, space);
     const bool is_3d = space == n;
-    const double tolerance = 0.5 * kTargetDeviation / (is_3d ? 1.0 : uv_scale(sides.faces[space], middle));
+    const gp_XY scales = is_3d ? gp_XY(1.0, 1.0) : uv_scales(sides.faces[space], middle);
+    if (scales.X() <= 0.0 || scales.Y() <= 0.0) return std::nullopt;
+    OneSpace f(exact, n, space, scales);
     AdvApprox_ApproxAFunction approx(0, is_3d ? 0 : 1, is_3d ? 1 : 0, none, is_3d ? none : one_value(tolerance),
                                      is_3d ? one_value(tolerance) : none, first, last, GeomAbs_C1, kAxisMaxDegree,
                                      kAxisMaxSegments, f);
@@ -771,6 +780,7 @@ std::optional<Trace> approximate_axis_curve(AxisCurve& exact, const Sides& sides
     } else {
       TColgp_Array1OfPnt2d poles(1, approx.NbPoles());
       approx.Poles2d(1, poles);
+      for (gp_Pnt2d& p : poles) p.SetCoord(p.X() / scales.X(), p.Y() / scales.Y());
       trace.pcurves.push_back(new Geom2d_BSplineCurve(poles, knots, mults, approx.Degree()));
     }
   }
