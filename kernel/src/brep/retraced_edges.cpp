@@ -567,17 +567,18 @@ std::optional<Trace> best_trace(const TopoDS_Edge& edge, const Sides& sides) {
 // ---- Edges winding around a beam, refitted with the beam's angle as parameter (issue 14: compact files) ----
 //
 // Where an edge winds around a cylinder or a cone (its u there runs one way along it), the exact curve is a
-// function of that angle: the point where the surface's ruling at angle u meets the other surface. With u as the
-// parameter the 3D curve and every (u, v) curve are smooth functions of one variable, which one B-spline of degree
-// up to 14 over all of them follows to 1e-8 with one to a few spans: 15 to 45 poles a curve, where OpenCASCADE's
-// walking lines keep 20 to 160 (the main job's STEP: 48 % of it was such curves).
+// function of that angle: the point where the surface's ruling at angle u meets the other surface (a ball cut by a
+// wall: the meridian of a sphere framed around the wall's normal). With u as the parameter the 3D curve and every
+// (u, v) curve are smooth functions of one variable, which B-splines of degree up to 14 follow to 1e-8 with one to
+// a few spans: about 35 poles a curve for a whole loop, where OpenCASCADE's walking lines keep 20 to 160 (the main
+// job's STEP: 48 % of it was such curves).
 
 constexpr int kAxisSamples = 64;  // samples of the old curves: monotony of u, and starting points for Newton
 constexpr int kAxisMaxDegree = 14, kAxisMaxSegments = 64;
 
-// The exact curve of an edge around the axis of `sides.faces[axis]` (a cylinder or cone), as a function of the
-// edge's own parameter t: u = u0 + (u1 - u0) (t - first) / (last - first) on that face, v where its ruling meets
-// the other surface. (u, v) on every face follow, each face's u in the period of its old curve.
+// The exact curve of an edge around the axis of `axis` (a face's cylinder or cone, or a framed sphere), as a
+// function of the edge's own parameter t: u = u0 + (u1 - u0) (t - first) / (last - first) on that surface, v where
+// its ruling meets the other surface. (u, v) on every face follow, each face's u in the period of its old curve.
 class AxisCurve : public AdvApprox_EvaluatorFunction {
  public:
   AxisCurve(const Sides& sides, const ImplicitSurface& axis, std::size_t other, double first, double last)
@@ -754,8 +755,9 @@ Handle(TColStd_HArray1OfReal) one_value(double v) {
 }
 
 // The 3D curve and every (u, v) curve approximated each on its own knots (they share the parameter, so the edge
-// stays same-parameter), all to half the target deviation (the (u, v) ones scaled by uv_scales); how far they stray measured as for a trace, and from the exact point. (Least-squares splines
-// of the greatest smoothness through samples of the exact curve were tried: the main job 0.1 % smaller, 11 s slower.)
+// stays same-parameter), all to half the target deviation (the (u, v) ones scaled by uv_scales); how far they
+// stray measured as for a trace, and from the exact point. (Least-squares splines of the greatest smoothness through
+// samples of the exact curve were tried: the main job 0.1 % smaller, 11 s slower.)
 std::optional<Trace> approximate_axis_curve(AxisCurve& exact, const Sides& sides, const gp_Pnt& middle, double first,
                                             double last) {
   const int n = static_cast<int>(sides.faces.size());
