@@ -3,11 +3,12 @@ unequal end radii, U a slight swirl) trimmed into a cylinder 3 degrees off its b
 as a STEP assembly and read back by OpenCASCADE's reader (in a reader process). Prints the beams, the write time,
 the file's size per beam, the peak memory, the read time, and each part's validity, solids and volume.
 Default: 12 x 12 x 8 nodes, 3,120 beams (33 s to write on the shared machine, 2.4 KB per beam, 18 s to read; 87
-loose edges retraced; 3.5 KB per beam before the reals went to nine decimals and the intersection edges were refitted);
---long: 101,343 beams (issue 14's 100,000-beam target: written in 2,257 s, 269.1 MB, 2.7 KB per beam, 1,145 of
-1,158 loose edges retraced in 6.3 s, read back with the parts' checks in 692 s, on a machine running a sweep beside
-it; peak 10.6 GB. Before the retrace: 237.5 MB, 1,674 s and 773 s; before equal geometry was shared: 1,137.5 MB,
-read back in 2,553 s).
+loose edges retraced; 3.5 KB per beam before the reals went to nine decimals and the intersection edges were
+refitted); --long: 101,343 beams (issue 14's 100,000-beam target: written in 2,739 s on a machine running two
+other jobs, 207.0 MB, 2.0 KB per beam, 1,145 of 1,158 loose edges retraced and the intersection edges refitted in
+22.2 s, read back with the parts' checks in 530 s, both valid; peak 9.8 GB. Before the reals went to nine
+decimals and the edges were refitted: 269.1 MB, 2,257 s and 692 s, peak 10.6 GB. Before the retrace: 237.5 MB,
+1,674 s and 773 s; before equal geometry was shared: 1,137.5 MB, read back in 2,553 s).
 Usage: bench_step_with_skin.py [--long]"""
 import os
 import resource
