@@ -13,6 +13,9 @@ import time
 
 import steadylattice as sl
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from step_read_back import read_back_and_print  # noqa: E402  (tests/common)
+
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "kernel", "data")
 
 
@@ -32,18 +35,13 @@ def main():
             lat.beam_count, size / 1e6, size / 1e3 / lat.beam_count, write), flush=True)
         print("edges refitted around their beam %d; loose edges %d, retraced %d; %.1f s" % (
             stats["refitted_edges"], stats["loose_edges"], stats["retraced_edges"], stats["retrace_seconds"]))
-        start = time.perf_counter()
-        parts = sl.read_step(path)
-        print("read back by OpenCASCADE in %.1f s" % (time.perf_counter() - start))
-        for p in parts:
-            print("  %-8s valid %s, %d solids, %d faces, volume %.9f" % (
-                p["name"], p["valid"], p["solids"], p["faces"], p["volume"]))
+        _, all_valid = read_back_and_print(path, volume_digits=9)
     if "--no-brep" not in sys.argv:
         start = time.perf_counter()
         text = lat.brep(body=body, skin=1.2)
         print("BREP (one solid) %.2f MB, %.2f KB per beam, in %.1f s" % (
             len(text) / 1e6, len(text) / 1e3 / lat.beam_count, time.perf_counter() - start))
-    if not all(p["valid"] and p["solids"] == 1 for p in parts):
+    if not all_valid:
         sys.exit(1)
 
 

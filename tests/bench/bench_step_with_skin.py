@@ -19,8 +19,10 @@ import time
 import steadylattice as sl
 
 sys.path.append("/usr/lib/freecad/lib")
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
 import FreeCAD  # noqa: E402
 import Part  # noqa: E402
+from step_read_back import read_back_and_print  # noqa: E402  (tests/common)
 
 
 def lattice(counts):
@@ -58,13 +60,8 @@ def main():
         print("loose edges of the Booleans %d (up to %.1e), retraced %d (now up to %.1e) in %.1f s" % (
             stats["loose_edges"], stats["loosest_edge_before"], stats["retraced_edges"], stats["loosest_edge_after"],
             stats["retrace_seconds"]), flush=True)
-        start = time.perf_counter()
-        parts = sl.read_step(path)
-        print("read back by OpenCASCADE in %.1f s" % (time.perf_counter() - start))
-        for p in parts:
-            print("  %-8s valid %s, %d solids, %d faces, volume %.6f" % (
-                p["name"], p["valid"], p["solids"], p["faces"], p["volume"]))
-        if not all(p["valid"] and p["solids"] == 1 for p in parts):
+        _, all_valid = read_back_and_print(path)
+        if not all_valid:
             sys.exit(1)
 
 
