@@ -1,4 +1,4 @@
-// retrace_loose_edges: edges OpenCASCADE's Booleans left loose (a walking line where a ball meets a cylinder)
+// retrace_intersection_edges: edges OpenCASCADE's Booleans left loose (a walking line where a ball meets a cylinder)
 // given curves on the exact intersection, checked against the volume of a ball cut by a cylinder integrated slice by
 // slice in closed form, and with the faces of two solids sharing the edge.
 #include <gtest/gtest.h>
@@ -114,7 +114,7 @@ TEST(RetracedEdges, ABallCutAcrossTheCylinderSeamGetsItsExactEdge) {
   ASSERT_GT(before, 1e-6) << "OpenCASCADE's Common left no loose edge: the test no longer shows the retrace";
   const double exact = ball_inside_cylinder();
 
-  const RetracedEdges r = retrace_loose_edges({common});
+  const RetracedEdges r = retrace_intersection_edges({common});
   EXPECT_GE(r.loose, 1);
   EXPECT_EQ(r.retraced, r.loose);
   EXPECT_DOUBLE_EQ(r.loosest_before, before);
@@ -141,7 +141,7 @@ TEST(RetracedEdges, AnEdgeSharedByTwoSolidsGetsCurvesOnTheFacesOfBoth) {
   ASSERT_FALSE(fuse.HasErrors());
   const TopoDS_Shape all = fuse.Shape();
   ASSERT_GT(loosest_edge(all), 1e-6);
-  const RetracedEdges r = retrace_loose_edges({all});
+  const RetracedEdges r = retrace_intersection_edges({all});
   EXPECT_GE(r.retraced, 1);
   EXPECT_EQ(r.retraced, r.loose);
   EXPECT_LE(loosest_edge(all), 1e-7);
@@ -170,7 +170,7 @@ TEST(RetracedEdges, EdgesEndingAtASpherePoleStayValid) {
   const double before = loosest_edge(common), volume_before = boundary_volume(common), exact = ball_inside_cylinder(d);
   ASSERT_GT(before, 1e-4);
   ASSERT_TRUE(BRepCheck_Analyzer(common).IsValid());
-  const RetracedEdges r = retrace_loose_edges({common});
+  const RetracedEdges r = retrace_intersection_edges({common});
   EXPECT_GE(r.loose, 1);
   EXPECT_TRUE(BRepCheck_Analyzer(common).IsValid());
   const double volume_after = boundary_volume(common);
@@ -239,13 +239,13 @@ TEST(RetracedEdges, ABeamCutByAWallGetsItsEdgeAroundItsAxisWithFewerPoles) {
   const int poles_before = spline_poles(common);
   ASSERT_GT(poles_before, 0) << "OpenCASCADE's Common gave no walking line: the test no longer shows the refit";
   const double exact = tilted_beam_inside_wall(), volume_before = boundary_volume(common);
-  const RetracedEdges r = retrace_loose_edges({common});
+  const RetracedEdges r = retrace_intersection_edges({common});
   const int poles_after = spline_poles(common);
   const double volume_after = boundary_volume(common);
   std::printf("[ report ] beam cut by a wall: %lld edge(s) refitted around the beam's axis, %d poles before, %d "
-              "after; volume off by %.2e before, %.2e after\n", static_cast<long long>(r.around_axis), poles_before,
+              "after; volume off by %.2e before, %.2e after\n", static_cast<long long>(r.refitted), poles_before,
               poles_after, (volume_before - exact) / exact, (volume_after - exact) / exact);
-  EXPECT_GE(r.around_axis, 1);
+  EXPECT_GE(r.refitted, 1);
   EXPECT_LT(poles_after, 0.6 * poles_before);  // 105 for 204 (OCCT 7.6)
   EXPECT_LE(loosest_edge(common), 1e-7);
   EXPECT_TRUE(BRepCheck_Analyzer(common).IsValid());
@@ -283,7 +283,7 @@ TEST(RetracedEdges, AVertexKeepsTheToleranceOtherEdgesMeetingThereNeed) {
   TopExp::MapShapes(faces, TopAbs_VERTEX, vertices);
   std::vector<double> before;
   for (int i = 1; i <= vertices.Extent(); ++i) before.push_back(BRep_Tool::Tolerance(TopoDS::Vertex(vertices(i))));
-  const RetracedEdges r = retrace_loose_edges({faces});
+  const RetracedEdges r = retrace_intersection_edges({faces});
   EXPECT_GE(r.retraced, 1);
   for (int i = 1; i <= vertices.Extent(); ++i)
     EXPECT_GE(BRep_Tool::Tolerance(TopoDS::Vertex(vertices(i))), before[i - 1]) << "vertex " << i;

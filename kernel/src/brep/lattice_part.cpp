@@ -36,12 +36,12 @@ void make_sphere_faces_portable(TrimResult& r) {
 
 // Edges the Booleans left loose, retraced onto the exact curves their faces meet in, in every shape of the result
 // at once (the parts share faces): a part holding one is defined only to its tolerance (retraced_edges.hpp).
-void retrace_loose_edges_of(TrimResult& r) {
+void retrace_intersection_edges_of(TrimResult& r) {
   const auto clock = std::chrono::steady_clock::now();
-  const RetracedEdges e = retrace_loose_edges({r.part, r.lattice, r.skin});
+  const RetracedEdges e = retrace_intersection_edges({r.part, r.lattice, r.skin});
   r.stats.loose_edges = e.loose;
   r.stats.retraced_edges = e.retraced;
-  r.stats.refitted_edges = e.around_axis;
+  r.stats.refitted_edges = e.refitted;
   r.stats.loosest_edge_before = e.loosest_before;
   r.stats.loosest_edge_after = e.loosest_after;
   r.stats.retrace_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock).count();
@@ -74,7 +74,7 @@ TrimResult make_trimmed_or_whole_part(const FlatLattice& lattice, const LatticeP
 
 TrimResult make_part(const FlatLattice& lattice, const LatticePartRequest& request, Progress& progress) {
   TrimResult out = make_trimmed_or_whole_part(lattice, request, progress);
-  retrace_loose_edges_of(out);
+  retrace_intersection_edges_of(out);
   make_sphere_faces_portable(out);
   return out;
 }

@@ -1,5 +1,4 @@
 #include "brep/portable_sphere_faces.hpp"
-#include "brep/sphere_pcurve.hpp"
 
 #include <AdvApprox_ApproxAFunction.hxx>
 #include <AdvApprox_EvaluatorFunction.hxx>
@@ -32,6 +31,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "brep/sphere_pcurve.hpp"
 #include "brep/sphere_seam_frames.hpp"
 
 namespace steady {

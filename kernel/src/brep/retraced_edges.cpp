@@ -839,7 +839,7 @@ std::optional<Trace> fit_around_axis(const TopoDS_Edge& edge, const Sides& sides
 
 }  // namespace
 
-RetracedEdges retrace_loose_edges(const std::vector<TopoDS_Shape>& shapes) {
+RetracedEdges retrace_intersection_edges(const std::vector<TopoDS_Shape>& shapes) {
   RetracedEdges out;
   // One map over all shapes: an edge shared by two parts gets (u, v) curves on the faces of both.
   TopoDS_Compound all;
@@ -904,7 +904,7 @@ RetracedEdges retrace_loose_edges(const std::vector<TopoDS_Shape>& shapes) {
   out.loose = static_cast<std::int64_t>(loose.size());
   for (std::size_t k = 0; k < applied.size(); ++k) {
     out.retraced += !revert[k] && applied[k].loose;
-    out.around_axis += !revert[k] && applied[k].around_axis;
+    out.refitted += !revert[k] && applied[k].around_axis;
   }
   for (const TopoDS_Edge& edge : loose) out.loosest_after = std::max(out.loosest_after, BRep_Tool::Tolerance(edge));
   return out;

@@ -25,7 +25,7 @@ namespace steady {
 struct RetracedEdges {
   std::int64_t loose = 0;      // edges above the threshold between faces of kinds the retrace knows; of those,
   std::int64_t retraced = 0;   //   given exact curves and the tolerance those hold
-  std::int64_t around_axis = 0;  // edges (loose or not) refitted around a beam's axis: fewer poles, 1e-8 exact
+  std::int64_t refitted = 0;   // edges (loose or not) refitted around a beam's or ball's axis: 1e-8, fewer poles
   double loosest_before = 0.0, loosest_after = 0.0;  // the largest tolerance of those edges before and after
 };
 
@@ -38,7 +38,7 @@ struct RetracedEdges {
 // half the old tolerance; and put back, with every retraced edge of the face, when a face along it that BRepCheck
 // found valid before is invalid after. Vertices keep their tolerance, raised where the new curves need more: a
 // vertex's tolerance also covers the other edges meeting there, on faces that no retraced edge bounds.
-RetracedEdges retrace_loose_edges(const std::vector<TopoDS_Shape>& shapes);
+RetracedEdges retrace_intersection_edges(const std::vector<TopoDS_Shape>& shapes);
 
 constexpr double kLooseEdgeTolerance = 2e-7;
 
