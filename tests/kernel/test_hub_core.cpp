@@ -25,6 +25,8 @@
 #include "steady/lattice/presets.hpp"
 #include "steady/properties/lattice_properties.hpp"
 #include "brep/hub_core.hpp"
+#include "lattice/circle_frames.hpp"
+#include "lattice/hub_collars.hpp"
 #include "steady/brep/trim.hpp"
 #include "test_support.hpp"
 #include "brick_definition.hpp"
@@ -70,6 +72,48 @@ void expect_core(const std::vector<CoreStump>& stumps, CoreKind kind, const std:
   const bool hull = kind == CoreKind::Hull;
   const double expected = core_volume_by_quadrature(stumps, collars, hull ? 1000 : 2000);
   EXPECT_NEAR(shape_volume(solid) / expected, 1.0, hull ? 2e-5 : 5e-4) << what;
+}
+
+// StumpReach::beyond_ball answers a direction by one dot product below the exit circle's cos; wherever the full
+// reach exceeds the ball (the only case a hub's piece depends on) it must give that reach, and 0 or at most 1
+// elsewhere. Random stumps: tapering both ways, thin to tangent (the hull model's end radius 1), directions drawn
+// evenly and within 1e-7 of the exit circle, where a wrong threshold would show first.
+TEST(StumpReach, BeyondTheBallAsTheFullReach) {
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), slope(-0.3, 0.3), radius(0.2, 1.0), near(-1e-7, 1e-7);
+  auto random_direction = [&] {
+    Vec3 d;
+    do d = Vec3(unit(rng), unit(rng), unit(rng));
+    while (glm::length(d) < 0.1 || glm::length(d) > 1.0);
+    return glm::normalize(d);
+  };
+  int beyond = 0, checked = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    CoreStump s;
+    s.direction = random_direction();
+    s.sin_phi = slope(rng);
+    s.end_radius = trial % 5 == 0 ? 1.0 : radius(rng);
+    const double exit_k = std::cos(std::asin(s.end_radius) - std::asin(s.sin_phi));  // where the cone meets the sphere
+    const StumpReach reach(s, 1.5 + 2.0 * (0.5 + 0.5 * unit(rng)));
+    const Vec3 u = any_perpendicular(s.direction), v = glm::cross(s.direction, u);
+    for (int i = 0; i < 2000; ++i) {
+      Vec3 w = random_direction();
+      if (i % 2 == 1) {  // on the exit circle, give or take 1e-7 in cos
+        const double k = std::clamp(exit_k + near(rng), -1.0, 1.0), t = M_PI * unit(rng);
+        w = k * s.direction + std::sqrt(1.0 - k * k) * (std::cos(t) * u + std::sin(t) * v);
+      }
+      const double full = reach(w), quick = reach.beyond_ball(w);
+      ++checked;
+      if (full > 1.0) {
+        ++beyond;
+        ASSERT_EQ(quick, full) << "trial " << trial << ", sin_phi " << s.sin_phi << ", end radius " << s.end_radius
+                               << ", cos to the axis " << glm::dot(w, s.direction) << ", exit at " << exit_k;
+      } else {
+        ASSERT_LE(quick, 1.0) << "trial " << trial;
+      }
+    }
+  }
+  EXPECT_GT(beyond, checked / 20);  // the directions beyond the ball are well represented
 }
 
 TEST(HubCore, HullModelHubs) {

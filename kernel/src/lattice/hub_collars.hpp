@@ -96,14 +96,23 @@ class StumpReach {
     if (k < quick_zero_) return 0.0;
     return reach(k);
   }
+  // The reach where it may exceed the ball's (1), else 0: the stump's boundary lies beyond the sphere only along
+  // directions inside its exit circle (k above the exit circle's cos), so a hub's piece along a direction is
+  // found by one dot product for most of its stumps.
+  double beyond_ball(const Vec3& w) const {
+    const double k = glm::dot(axis_, w);
+    return k < exit_k_ ? 0.0 : k < quick_zero_ ? 0.0 : reach(k);
+  }
   const Vec3& axis() const { return axis_; }
   double cos_phi() const { return cos_phi_; }
+  double exit_k() const { return exit_k_; }
 
  private:
   double reach(double k) const;
   Vec3 axis_;
   double sin_phi_, cos_phi_, end_radius_, start_, collar_;
   double quick_zero_;  // below this k the reach is 0 (a margin under start, so rounding cannot tell otherwise)
+  double exit_k_;      // below this k the reach is at most 1 (a margin under the exit circle's cos)
 };
 
 // The hub's volume up to its collars, by integrating the radial distance of its boundary over directions from

@@ -111,6 +111,12 @@ std::vector<std::pair<std::size_t, Vec3>> TrimSurface::clear_places(const std::v
   std::vector<std::pair<std::size_t, Vec3>> moved;
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Point p(points[i].x, points[i].y, points[i].z);
+    // A point within `gap` of a triangle has that triangle in its box of half-width gap (twice that, for the
+    // rounding): a box query answers the far points, nearly all of them, many times faster than a closest point.
+    const double box = 2.0 * gap;
+    if (!s.tree.do_intersect(
+            CGAL::Bbox_3(p.x() - box, p.y() - box, p.z() - box, p.x() + box, p.y() + box, p.z() + box)))
+      continue;
     const auto [closest, face] = s.tree.closest_point_and_primitive(p);
     const Vec3 c(closest.x(), closest.y(), closest.z());
     const double d = std::sqrt(distance2(points[i], c));

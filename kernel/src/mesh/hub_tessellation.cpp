@@ -90,11 +90,35 @@ struct RadialHub {
     int best = kSphere;
     double far = 1.0;
     for (std::size_t k = 0; k < reaches.size(); ++k) {
-      const double r = reaches[k](w);
+      const double r = reaches[k].beyond_ball(w);
       if (r > far) far = r, best = static_cast<int>(k);
     }
     return best;
   }
+  // piece(w) for w on the arc between unit a and b: only the stumps that can reach beyond the ball somewhere on
+  // it are asked (along the arc the cos to an axis moves by at most the chord |b - a|), so the answer is
+  // piece's, bit for bit, for a few dot products.
+  struct ArcPieces {
+    ArcPieces(const RadialHub& hub, const Vec3& a, const Vec3& b) : hub(hub) {
+      const double reach = glm::length(b - a) + 1e-12;
+      for (std::size_t k = 0; k < hub.reaches.size(); ++k) {
+        const StumpReach& s = hub.reaches[k];
+        if (std::max(glm::dot(s.axis(), a), glm::dot(s.axis(), b)) + reach >= s.exit_k())
+          near.push_back(static_cast<int>(k));
+      }
+    }
+    int operator()(const Vec3& w) const {
+      int best = kSphere;
+      double far = 1.0;
+      for (int k : near) {
+        const double r = hub.reaches[k].beyond_ball(w);
+        if (r > far) far = r, best = k;
+      }
+      return best;
+    }
+    const RadialHub& hub;
+    std::vector<int> near;
+  };
   double radius(const Vec3& w) const { return reach(piece(w), w); }
   // How far point p lies outside the hub (the ball and the stumps' cones): > 0 only outside every piece, where
   // it is the exact distance to the nearest one; <= 0 inside some piece. A chord across a concave crease (a cone
@@ -118,10 +142,11 @@ struct RadialHub {
 
 // The point where the pieces change along the arc from a (on piece `at_a`) to b: bisection to rounding.
 Vec3 crease_on_arc(const RadialHub& hub, const Vec3& a, const Vec3& b, int at_a) {
+  const RadialHub::ArcPieces piece(hub, a, b);
   double lo = 0.0, hi = 1.0;
   for (int it = 0; it < 60; ++it) {
     const double mid = 0.5 * (lo + hi);
-    (hub.piece(glm::normalize((1.0 - mid) * a + mid * b)) == at_a ? lo : hi) = mid;
+    (piece(glm::normalize((1.0 - mid) * a + mid * b)) == at_a ? lo : hi) = mid;
   }
   return glm::normalize((1.0 - hi) * a + hi * b);
 }
