@@ -46,11 +46,11 @@ void check_tolerance(const FlatLattice& f, double tolerance) {
 }
 
 // Every beam whose hubs are built fits between their loops, or is short: its two stumps overlap, and its hubs are
-// united in a group (each stump's cap lies in the other stump, and the union drops it) when each cap stays in the
-// free part of the other stump, else refused. Then the groups: hubs joined by `contacts` or by short beams. Returns
-// per beam whether its strip (or its group) is placed.
+// united in a group (each stump's cap lies in the other hub, and the union drops it) when each cap lies in the
+// other stump or in the other ball, else refused. Then the groups: hubs joined by `contacts` or by short beams.
+// Returns per beam whether its strip (or its group) is placed.
 std::vector<char> fit_beams_and_unite(MeshPlan& plan, const std::vector<char>& built, ForeignContacts contacts,
-                                      Progress& progress) {
+                                      double tolerance, Progress& progress) {
   const FlatLattice& f = *plan.lattice;
   const std::vector<BeamFrustum>& frustums = plan.frustums;
   LatticeMeshStats& stats = plan.stats;
@@ -73,7 +73,20 @@ std::vector<char> fit_beams_and_unite(MeshPlan& plan, const std::vector<char>& b
     const BeamCone& cone = frustums[e].cone;
     const double inside_a = 0.5 * (cone.ra * cone.sin_phi + frustums[e].exit_a);
     const double inside_b = 0.5 * (-cone.rb * cone.sin_phi + frustums[e].exit_b);
-    if (!(length - at_a > inside_b && length - at_b > inside_a))
+    // Or its rim inside the other ball by twice the tolerance (that sphere's tessellation lies inside it by up to
+    // one), on the near side of its center: the cap lies in the ball, where the cone's circles run inside it too
+    // (beams thinner than their nodes; a tangent cone's circles there lie outside the ball). The octets at node
+    // 0.45, beam/node 0.9, tapered, whose collars reach 0.07 from the other center.
+    auto in_other_ball = [&](const MeshBeamEnd& end, double at, const MeshBeamEnd& other) {
+      const double x = length - at;
+      const double rim = plan.templates[plan.hubs[end.hub].templ].loop_radius[end.slot] *
+                         f.balls[plan.hubs[end.hub].ball].radius;
+      const double inner = f.balls[plan.hubs[other.hub].ball].radius - 2.0 * tolerance;
+      return x > 0.0 && inner > 0.0 && x * x + rim * rim < inner * inner;
+    };
+    const bool cap_a_inside = length - at_a > inside_b || in_other_ball(a, at_a, b);
+    const bool cap_b_inside = length - at_b > inside_a || in_other_ball(b, at_b, a);
+    if (!(cap_a_inside && cap_b_inside))
       fail_input("hub", "beam " + std::to_string(e) + " (balls " + std::to_string(f.beams[e].a) + " and " +
                             std::to_string(f.beams[e].b) + ") is too short for the collars of its crowded hubs (" +
                             g(at_a) + " + " + g(at_b) + " of its length " + g(length) +
@@ -241,7 +254,7 @@ MeshPlan plan_lattice_mesh(const FlatLattice& f, const MeshOptions& options, Pro
   }
   stats.template_seconds = seconds_since(t0);
 
-  const std::vector<char> placed = fit_beams_and_unite(plan, built, contacts, progress);
+  const std::vector<char> placed = fit_beams_and_unite(plan, built, contacts, options.tolerance, progress);
 
   // Sizes and offsets (a grouped hub has its place in its group's mesh).
   for (std::size_t k = 0; k < plan.hubs.size(); ++k) {
