@@ -325,9 +325,9 @@ TEST(LatticeMesh, ShortBeamsBetweenMirroredCrowdedHubsAreUnited) {
 
 // The long sweep's tapered octet at node 0.45, beam/node 0.9 (tests/kernel/data/octet_node045_taper_09.json): its
 // crowded hubs' collars reach to 0.07 from the other node's center, past the other stump into its ball, where each
-// cap still lies inside that ball; the mesh refused it naming a short beam. With beams as thick as the nodes
-// (_10.json: tangent cones, whose circles near the other center lie outside its ball) it is still refused, naming
-// the beam and what helps.
+// cap still lies inside that ball; the mesh refused it naming a short beam. With beams as thick as the nodes and a
+// twisted taper (octet_node045_twisted_taper_10.json) a collar reaches past the other node's center: still
+// refused, naming the beam and what helps.
 TEST(LatticeMesh, ShortBeamsWhoseCapsReachIntoTheOtherBallAreUnited) {
   auto octet = [](const std::string& file) {
     std::ifstream in(std::string(STEADY_TEST_DATA) + "/" + file);
@@ -349,8 +349,8 @@ TEST(LatticeMesh, ShortBeamsWhoseCapsReachIntoTheOtherBallAreUnited) {
   EXPECT_LE(check.volume, exact * (1.0 + 1e-9));
   EXPECT_GE(check.volume, exact - tolerance * area) << "exact " << exact;
   try {
-    lattice_mesh(octet("octet_node045_taper_10.json"), {tolerance});
-    FAIL() << "the octet with beams as thick as its nodes was meshed";
+    lattice_mesh(octet("octet_node045_twisted_taper_10.json"), {tolerance});
+    FAIL() << "the octet whose collars reach past the other node's center was meshed";
   } catch (const InvalidInput& e) {
     const std::string message = e.what();
     EXPECT_NE(message.find("too short for the collars"), std::string::npos) << message;

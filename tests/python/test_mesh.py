@@ -92,6 +92,23 @@ def test_dense_lattices_whose_hubs_meet_are_meshed_closed_by_united_groups(prese
     assert volume_and_area(back_vertices, back_triangles)[0] == pytest.approx(volume, rel=1e-5)
 
 
+def test_tangent_short_beams_whose_caps_reach_the_other_center_mesh_within_sampling():
+    # The long sweep's tapered octet at node 0.45 with beams as thick as its nodes: its collars reach to 0.0005
+    # from the other node's center, where the tangent cone lies outside that ball by less than a quarter of the
+    # tolerance; the mesh refused it. Its properties are refused too (tangent Fuses), so against sampling.
+    from crowded_sweep import lattice, sampled_volume
+    lat = lattice("octet", 0.45, 1.0, "taper", (2, 2, 2))
+    tolerance = 0.02 * 0.45 * sl.preset("octet")["neighbour_distance"]
+    stats = {}
+    vertices, triangles = lat.to_mesh(tolerance, stats=stats)
+    assert stats["short_beams"] == 108 and stats["foreign_groups"] == 1
+    assert edge_report(triangles) == (0, 0, 0)
+    assert lat.distance(vertices).max() <= tolerance
+    volume, area = volume_and_area(vertices, triangles)
+    estimate, sigma = sampled_volume(lat)
+    assert estimate - 5 * sigma - tolerance * area <= volume <= estimate + 5 * sigma, (volume, estimate, sigma)
+
+
 def test_the_short_crowded_sweep_meshes_every_design():
     # Issue 17's short sweep (36 designs) as meshes: each closed, within the tolerance and the chord bound of the
     # properties or of sampling. Four (the FCC with beams as thick as its nodes, the octets at 0.8, 1.0 and the hull

@@ -73,16 +73,17 @@ std::vector<char> fit_beams_and_unite(MeshPlan& plan, const std::vector<char>& b
     const BeamCone& cone = frustums[e].cone;
     const double inside_a = 0.5 * (cone.ra * cone.sin_phi + frustums[e].exit_a);
     const double inside_b = 0.5 * (-cone.rb * cone.sin_phi + frustums[e].exit_b);
-    // Or its rim inside the other ball by twice the tolerance (that sphere's tessellation lies inside it by up to
-    // one), on the near side of its center: the cap lies in the ball, where the cone's circles run inside it too
-    // (beams thinner than their nodes; a tangent cone's circles there lie outside the ball). The octets at node
-    // 0.45, beam/node 0.9, tapered, whose collars reach 0.07 from the other center.
+    // Or in the other ball, give or take a quarter of the tolerance, on the near side of its center: the union
+    // drops what lies inside the sphere's tessellation and keeps the rest of the cap as a ledge within that margin
+    // of the exact sphere, where the cone runs inside the ball too (beams thinner than their nodes) or outside it
+    // by less than the cap's rim (tangent cones, widening toward the center). The tapered octets at node 0.45,
+    // whose collars reach 0.07 (beam/node 0.9) and 0.0005 (1.0, and the hull model) from the other center.
     auto in_other_ball = [&](const MeshBeamEnd& end, double at, const MeshBeamEnd& other) {
       const double x = length - at;
       const double rim = plan.templates[plan.hubs[end.hub].templ].loop_radius[end.slot] *
                          f.balls[plan.hubs[end.hub].ball].radius;
-      const double inner = f.balls[plan.hubs[other.hub].ball].radius - 2.0 * tolerance;
-      return x > 0.0 && inner > 0.0 && x * x + rim * rim < inner * inner;
+      const double ball = f.balls[plan.hubs[other.hub].ball].radius + 0.25 * tolerance;
+      return x > 0.0 && x * x + rim * rim < ball * ball;
     };
     const bool cap_a_inside = length - at_a > inside_b || in_other_ball(a, at_a, b);
     const bool cap_b_inside = length - at_b > inside_a || in_other_ball(b, at_b, a);
