@@ -17,6 +17,7 @@
 #include "occ_reference.hpp"
 #include "sample_lattices.hpp"
 #include "test_lattices.hpp"
+#include "test_support.hpp"
 #include "steady/core/errors.hpp"
 #include "steady/lattice/flat_lattice.hpp"
 #include "steady/lattice/lattice_io.hpp"
@@ -307,24 +308,31 @@ TEST(LatticeMesh, GroupsOfMoreThan256HubsAreUnited) {
   EXPECT_GE(check.volume, volume - tolerance * area) << "chord bound " << tolerance * area;
 }
 
+// A lattice whose hubs are united along beams too short for their collars, meshed: `short_beams` such beams joining
+// `hubs` hubs in one group, closed, outward, without self-intersection, the exact properties' volume within the
+// chord bound.
+MeshCheck expect_united_short_beams(const Lattice& lattice, double tolerance, std::int64_t short_beams,
+                                    std::int64_t hubs) {
+  LatticeMeshStats stats;
+  const TriangleMesh mesh = lattice_mesh(lattice, {tolerance}, &stats);
+  EXPECT_EQ(stats.short_beams, short_beams);
+  EXPECT_EQ(stats.foreign_groups, 1);
+  EXPECT_EQ(stats.foreign_hubs, hubs);
+  const MeshCheck check = cgal_check(mesh);
+  EXPECT_TRUE(check.closed && check.outward && !check.self_intersecting);
+  const double exact = lattice_properties(lattice).volume, area = mesh_area(mesh);
+  EXPECT_LE(check.volume, exact * (1.0 + 1e-9));
+  EXPECT_GE(check.volume, exact - tolerance * area) << "exact " << exact;
+  return check;
+}
+
 // A cube of 8 crowded hubs whose 12 beams are as thick as the balls: every beam is too short for its two hubs'
 // collars, so the hubs are united in one group, each stump's cap inside the other's. The two hubs of a beam are
 // mirror images, and the two tessellations of its cone lay on each other (rings in step): the union folded once
 // rounded to floats and the mesh was refused. Checked with CGAL against the exact properties' volume.
 TEST(LatticeMesh, ShortBeamsBetweenMirroredCrowdedHubsAreUnited) {
-  const Lattice cube = preset_lattice("cubic", {1, 1, 1}, 1.0, 0.45, 0.45);
-  const double tolerance = 0.009;
-  LatticeMeshStats stats;
-  const TriangleMesh mesh = lattice_mesh(cube, {tolerance}, &stats);
-  EXPECT_EQ(stats.short_beams, 12);
-  EXPECT_EQ(stats.foreign_groups, 1);
-  EXPECT_EQ(stats.foreign_hubs, 8);
-  const MeshCheck check = cgal_check(mesh);
-  EXPECT_TRUE(check.closed && check.outward && !check.self_intersecting);
+  const MeshCheck check = expect_united_short_beams(preset_lattice("cubic", {1, 1, 1}, 1.0, 0.45, 0.45), 0.009, 12, 8);
   EXPECT_EQ(check.components, 1u);
-  const double exact = lattice_properties(cube).volume, area = mesh_area(mesh);
-  EXPECT_LE(check.volume, exact * (1.0 + 1e-9));
-  EXPECT_GE(check.volume, exact - tolerance * area) << "exact " << exact;
 }
 
 // The long sweep's tapered octet at node 0.45, beam/node 0.9 (tests/kernel/data/octet_node045_taper_09.json): its
@@ -334,24 +342,11 @@ TEST(LatticeMesh, ShortBeamsBetweenMirroredCrowdedHubsAreUnited) {
 // refused, naming the beam and what helps.
 TEST(LatticeMesh, ShortBeamsWhoseCapsReachIntoTheOtherBallAreUnited) {
   auto octet = [](const std::string& file) {
-    std::ifstream in(std::string(STEADY_TEST_DATA) + "/" + file);
-    std::stringstream text;
-    text << in.rdbuf();
-    return lattice_from_json(text.str());
+    return lattice_from_json(test::file_bytes(std::string(STEADY_TEST_DATA) + "/" + file));
   };
-  const Lattice thin = octet("octet_node045_taper_09.json");
   const double tolerance = 0.02 * 0.45 * std::sqrt(0.5);  // 0.02 of the node radius, as in the sweep
-  LatticeMeshStats stats;
-  const TriangleMesh mesh = lattice_mesh(thin, {tolerance}, &stats);
-  EXPECT_EQ(stats.short_beams, 108);
-  EXPECT_EQ(stats.foreign_groups, 1);
-  const MeshCheck check = cgal_check(mesh);
-  EXPECT_TRUE(check.closed && check.outward && !check.self_intersecting);
-  // The outer surface and the voids the beams enclose (the exact solid has them too; the volume below counts them).
-  EXPECT_GE(check.components, 1u);
-  const double exact = lattice_properties(thin).volume, area = mesh_area(mesh);
-  EXPECT_LE(check.volume, exact * (1.0 + 1e-9));
-  EXPECT_GE(check.volume, exact - tolerance * area) << "exact " << exact;
+  // The outer surface and the voids the beams enclose (the exact solid has them too; the volume counts them).
+  EXPECT_GE(expect_united_short_beams(octet("octet_node045_taper_09.json"), tolerance, 108, 32).components, 1u);
   try {
     lattice_mesh(octet("octet_node045_twisted_taper_10.json"), {tolerance});
     FAIL() << "the octet whose collars reach past the other node's center was meshed";
