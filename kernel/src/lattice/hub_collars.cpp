@@ -99,8 +99,9 @@ StumpReach::StumpReach(const CoreStump& s, double collar)
       collar_(collar),
       // k <= 0 gives 0 when start > 0, and 0 < k < start puts the interval's start beyond the ball
       quick_zero_(start_ > 0.0 ? start_ * (1.0 - 1e-9) : -std::numeric_limits<double>::infinity()),
-      // On the unit sphere the cone's region is where c sqrt(1 - k^2) + k s <= r0: concave in k, above 0 at the
-      // tangent plane (r0 <= 1) and below at the axis, so it is k >= cos(asin(r0) - phi), the exit circle.
+      // On the unit sphere the cone's region is where c sqrt(1 - k^2) + k s - r0 <= 0: concave in k, above 0 at the
+      // tangent plane for r0 < 1 (0 there in the hull model, r0 = 1) and below at the axis, so it is
+      // k >= cos(asin(r0) - phi), the exit circle (the tangent circle in the hull model).
       exit_k_(std::cos(std::asin(std::min(end_radius_, 1.0)) - std::asin(sin_phi_)) - 1e-9) {}
 
 double StumpReach::reach(double k) const {
