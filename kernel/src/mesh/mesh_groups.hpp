@@ -7,7 +7,8 @@
 // every other member (the beam meets no foreign element), and is removed after the union, leaving the loop open
 // with its vertices bit for bit as placed, where the beam's strip joins it as it joins any hub. A beam too short
 // for its hubs' collars joins its two hubs the same way: it has no strip, each hub's stump is capped inside the
-// other's, and the union keeps the outer of the two tessellations of the cone where they overlap.
+// other hub (its stump, or its ball: mesh_plan.cpp), and the union keeps the outer of the two tessellations of the
+// cone where they overlap.
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
