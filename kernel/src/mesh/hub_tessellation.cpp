@@ -87,11 +87,17 @@ struct RadialHub {
   static constexpr int kSphere = -1;
   double reach(int piece, const Vec3& w) const { return piece == kSphere ? 1.0 : reaches[piece](w); }
   int piece(const Vec3& w) const {
+    return farthest(w, reaches.size(), [](std::size_t i) { return static_cast<int>(i); });
+  }
+  // The piece reaching farthest along w among the sphere and the stumps stump(0) .. stump(n - 1).
+  template <class Stump>
+  int farthest(const Vec3& w, std::size_t n, const Stump& stump) const {
     int best = kSphere;
     double far = 1.0;
-    for (std::size_t k = 0; k < reaches.size(); ++k) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const int k = stump(i);
       const double r = reaches[k].beyond_ball(w);
-      if (r > far) far = r, best = static_cast<int>(k);
+      if (r > far) far = r, best = k;
     }
     return best;
   }
@@ -108,13 +114,7 @@ struct RadialHub {
       }
     }
     int operator()(const Vec3& w) const {
-      int best = kSphere;
-      double far = 1.0;
-      for (int k : near) {
-        const double r = hub.reaches[k].beyond_ball(w);
-        if (r > far) far = r, best = k;
-      }
-      return best;
+      return hub.farthest(w, near.size(), [this](std::size_t i) { return near[i]; });
     }
     const RadialHub& hub;
     std::vector<int> near;
